@@ -1,0 +1,2 @@
+//! Placeholder; the real benches arrive with the batch path.
+fn main() {}

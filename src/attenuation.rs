@@ -1,0 +1,362 @@
+//! How a light's intensity falls off with distance, and where it becomes negligible.
+//!
+//! Every form is finite at `d = 0` and for every finite or infinite `d ≥ 0`, and decreasing in `d`
+//! (for the documented, non-negative parameters). [`Attenuation::cull_radius`] gives the distance
+//! beyond which the factor stays below a threshold, so a renderer can skip lights that cannot
+//! change a pixel. Derivations: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#attenuation).
+
+use crate::error::{self, PhongError};
+use crate::math;
+
+/// A distance-falloff form for point and spot lights.
+///
+/// | variant | factor at distance `d` |
+/// |---|---|
+/// | `None` | `1` |
+/// | `Polynomial` | `1 / max(c + l·d + q·d², MIN_DENOMINATOR)` (OpenGL, LearnOpenGL) |
+/// | `InverseSquare` | `P / max(d², ε²)` (the power `P` is a multiplier) |
+/// | `Unreal` | `saturate(1 − (d/r)⁴)² / (d² + 1)` (Karis 2013) |
+/// | `Frostbite` | `saturate(1 − (d/r)⁴)² / max(d², ε²)` (Lagarde & de Rousiers 2014) |
+///
+/// **Domain:** coefficients, power, radius and `ε` finite and `≥ 0` (radius and `ε` `> 0`); the
+/// `try_*` constructors check this and name the bad field. The factor is evaluated robustly for any
+/// field values (it is always finite and `≥ 0`), but monotonicity and [`cull_radius`] assume the
+/// documented domain.
+///
+/// [`cull_radius`]: Attenuation::cull_radius
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Attenuation {
+    /// No falloff: the factor is 1 at every distance (the light never fades). The default.
+    #[default]
+    None,
+    /// `1 / (constant + linear·d + quadratic·d²)`, the OpenGL fixed-function and LearnOpenGL form.
+    Polynomial {
+        /// `c`, the constant term (LearnOpenGL uses 1, which also caps the factor at 1).
+        constant: f32,
+        /// `l`, the linear term.
+        linear: f32,
+        /// `q`, the quadratic term; `c = l = 0, q = 1` is the inverse-square law.
+        quadratic: f32,
+    },
+    /// `P / max(d², ε²)`: the inverse-square law scaled by a light power.
+    InverseSquare {
+        /// `P`, a multiplier (not an exponent), as in the Blinn-Phong shader on Wikipedia.
+        power: f32,
+        /// `ε`, the distance below which the factor stops growing (default 0.01, one centimetre in
+        /// metres, as Frostbite uses).
+        min_distance: f32,
+    },
+    /// `saturate(1 − (d/r)⁴)² / (d² + 1)`: inverse-square with a window that reaches 0 at `r`.
+    Unreal {
+        /// `r`, where the light ends.
+        radius: f32,
+    },
+    /// `saturate(1 − (d/r)⁴)² / max(d², ε²)`: Frostbite's windowed inverse-square.
+    Frostbite {
+        /// `r`, where the light ends.
+        radius: f32,
+        /// `ε`, the distance below which the factor stops growing (default 0.01).
+        min_distance: f32,
+    },
+}
+
+/// The windowing function `saturate(1 − (d/r)⁴)²`; 0 for `d ≥ r` (and for `r ≤ 0`).
+#[inline]
+fn window(d: f32, r: f32) -> f32 {
+    if d < r {
+        let x = d / r; // in [0, 1): finite because r > d ≥ 0
+        let x2 = x * x;
+        let w = 1.0 - x2 * x2;
+        w * w
+    } else {
+        0.0
+    }
+}
+
+impl Attenuation {
+    /// The smallest denominator the polynomial form divides by, so its factor never exceeds 1e4
+    /// (the same cap as the inverse-square forms at `P = 1`, `ε = 0.01`).
+    pub const MIN_DENOMINATOR: f32 = 1e-4;
+
+    /// The default `ε` of the inverse-square forms: 0.01 (a centimetre when units are metres).
+    pub const DEFAULT_MIN_DISTANCE: f32 = 0.01;
+
+    /// The polynomial form `1/(c + l·d + q·d²)`, without checks (debug builds assert the domain;
+    /// release builds map negative or non-finite coefficients to 0).
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// // LearnOpenGL's table entry for a range of about 50 units.
+    /// let a = Attenuation::polynomial(1.0, 0.09, 0.032);
+    /// assert_eq!(a.factor(0.0), 1.0);
+    /// ```
+    #[must_use]
+    pub fn polynomial(constant: f32, linear: f32, quadratic: f32) -> Self {
+        debug_assert!(
+            Self::try_polynomial(constant, linear, quadratic).is_ok(),
+            "Attenuation::polynomial: coefficients must be finite and >= 0"
+        );
+        let s = |x: f32| math::clamp_or_lo(x, 0.0, math::MAX);
+        Attenuation::Polynomial {
+            constant: s(constant),
+            linear: s(linear),
+            quadratic: s(quadratic),
+        }
+    }
+
+    /// The polynomial form, checked: every coefficient finite and `≥ 0`.
+    ///
+    /// ```
+    /// use phong::{Attenuation, PhongError};
+    /// assert!(matches!(
+    ///     Attenuation::try_polynomial(1.0, -0.1, 0.0),
+    ///     Err(PhongError::Negative { field: "attenuation.linear", .. })
+    /// ));
+    /// ```
+    pub fn try_polynomial(constant: f32, linear: f32, quadratic: f32) -> Result<Self, PhongError> {
+        Ok(Attenuation::Polynomial {
+            constant: error::non_negative("attenuation.constant", constant)?,
+            linear: error::non_negative("attenuation.linear", linear)?,
+            quadratic: error::non_negative("attenuation.quadratic", quadratic)?,
+        })
+    }
+
+    /// `P / max(d², ε²)` with the default `ε` ([`Self::DEFAULT_MIN_DISTANCE`]), checked: `P` finite
+    /// and `≥ 0`.
+    pub fn try_inverse_square(power: f32) -> Result<Self, PhongError> {
+        Ok(Attenuation::InverseSquare {
+            power: error::non_negative("attenuation.power", power)?,
+            min_distance: Self::DEFAULT_MIN_DISTANCE,
+        })
+    }
+
+    /// The Unreal windowed form with radius `r`, checked: `r` finite and `> 0`.
+    pub fn try_unreal(radius: f32) -> Result<Self, PhongError> {
+        Ok(Attenuation::Unreal {
+            radius: positive("attenuation.radius", radius)?,
+        })
+    }
+
+    /// The Frostbite windowed form with radius `r` and the default `ε`, checked: `r` finite, `> 0`.
+    pub fn try_frostbite(radius: f32) -> Result<Self, PhongError> {
+        Ok(Attenuation::Frostbite {
+            radius: positive("attenuation.radius", radius)?,
+            min_distance: Self::DEFAULT_MIN_DISTANCE,
+        })
+    }
+
+    /// Checks the fields of any variant, as the `try_*` constructors do; returns `self` if valid.
+    ///
+    /// Use it after building a variant literally, or after deserialising one.
+    pub fn validated(self) -> Result<Self, PhongError> {
+        match self {
+            Attenuation::None => Ok(self),
+            Attenuation::Polynomial {
+                constant,
+                linear,
+                quadratic,
+            } => Self::try_polynomial(constant, linear, quadratic),
+            Attenuation::InverseSquare {
+                power,
+                min_distance,
+            } => {
+                error::non_negative("attenuation.power", power)?;
+                positive("attenuation.min_distance", min_distance)?;
+                Ok(self)
+            }
+            Attenuation::Unreal { radius } => Self::try_unreal(radius),
+            Attenuation::Frostbite {
+                radius,
+                min_distance,
+            } => {
+                positive("attenuation.radius", radius)?;
+                positive("attenuation.min_distance", min_distance)?;
+                Ok(self)
+            }
+        }
+    }
+
+    /// The factor at distance `d` from the light.
+    ///
+    /// The formula of each form is in the table on [`Attenuation`].
+    ///
+    /// **Domain:** `d ≥ 0`; any `f32` is accepted: negative `d` and NaN are treated as 0, `+∞` as the
+    /// limit. **Returns** a finite value in `[0, f32::MAX]`, also at `d = 0` (where the inverse-square
+    /// forms give `P/ε²` and the polynomial at most `1/MIN_DENOMINATOR`).
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// let q = Attenuation::polynomial(0.0, 0.0, 1.0);
+    /// assert_eq!(q.factor(2.0), 0.25); // inverse-square law
+    /// assert_eq!(q.factor(0.0), 1e4);  // finite at the light
+    /// let u = Attenuation::try_unreal(10.0).unwrap();
+    /// assert_eq!(u.factor(10.0), 0.0);
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn factor(&self, d: f32) -> f32 {
+        let d = math::clamp_or_lo(d, 0.0, math::MAX);
+        let f = match *self {
+            Attenuation::None => 1.0,
+            Attenuation::Polynomial {
+                constant,
+                linear,
+                quadratic,
+            } => {
+                // Horner form: no ∞·0 for any finite d, so no NaN.
+                let den = constant + d * (linear + quadratic * d);
+                1.0 / den.max(Self::MIN_DENOMINATOR)
+            }
+            Attenuation::InverseSquare {
+                power,
+                min_distance,
+            } => {
+                let dd = d.max(min_distance);
+                power / (dd * dd).max(f32::MIN_POSITIVE)
+            }
+            Attenuation::Unreal { radius } => window(d, radius) / (d * d + 1.0),
+            Attenuation::Frostbite {
+                radius,
+                min_distance,
+            } => {
+                let dd = d.max(min_distance);
+                window(d, radius) / (dd * dd).max(f32::MIN_POSITIVE)
+            }
+        };
+        math::clamp_or_lo(f, 0.0, math::MAX)
+    }
+
+    /// The distance beyond which [`factor`](Self::factor) stays below `threshold`: lights farther
+    /// than this from a point can be skipped.
+    ///
+    /// ```text
+    /// cull_radius(t) = inf { r ≥ 0 : factor(d) < t for every d > r }
+    /// ```
+    ///
+    /// | form | cull radius |
+    /// |---|---|
+    /// | `None` | `+∞` for `t ≤ 1`, else 0 |
+    /// | `Polynomial` | the positive root of `c + l·d + q·d² = 1/t` |
+    /// | `InverseSquare` | `√(P/t)` |
+    /// | `Unreal`, `Frostbite` | `min(r, root of factor(d) = t)` (bisection, to 1e-6 relative) |
+    ///
+    /// **Returns** `f32::INFINITY` exactly when the light never fades below the threshold (the `None`
+    /// form, a polynomial with `l = q = 0`, or `t ≤ 0`): that infinity means "never cull". 0 when the
+    /// factor is below `t` everywhere. A pick of `t` for 8-bit output is half a step of the
+    /// brightest colour the light can add: `t = 0.5 / (255 · max colour)`.
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// let q = Attenuation::polynomial(0.0, 0.0, 1.0);
+    /// assert!((q.cull_radius(0.01) - 10.0).abs() < 1e-5);
+    /// assert_eq!(Attenuation::None.cull_radius(0.01), f32::INFINITY);
+    /// let f = Attenuation::try_frostbite(5.0).unwrap();
+    /// assert!(f.cull_radius(1e-9) <= 5.0);
+    /// ```
+    #[must_use]
+    pub fn cull_radius(&self, threshold: f32) -> f32 {
+        let t = threshold;
+        if t.is_nan() || t <= 0.0 {
+            return f32::INFINITY;
+        }
+        let r = match *self {
+            Attenuation::None => {
+                if t <= 1.0 {
+                    f32::INFINITY
+                } else {
+                    0.0
+                }
+            }
+            Attenuation::Polynomial {
+                constant,
+                linear,
+                quadratic,
+            } => {
+                // In f64: the root formula subtracts, and 1/t may be large.
+                let (c, l, q) = (constant as f64, linear as f64, quadratic as f64);
+                let k = 1.0 / t as f64 - c; // need l·d + q·d² > k
+                if self.factor(0.0) < t {
+                    0.0
+                } else if l == 0.0 && q == 0.0 {
+                    f64::INFINITY
+                } else if k <= 0.0 {
+                    0.0
+                } else {
+                    // Stable root of q·d² + l·d − k = 0: d = 2k / (l + √(l² + 4qk)).
+                    2.0 * k / (l + math::sqrt_f64(l * l + 4.0 * q * k))
+                }
+                .min(f32::MAX as f64) as f32
+            }
+            Attenuation::InverseSquare { power, .. } => {
+                if self.factor(0.0) < t {
+                    0.0
+                } else {
+                    (math::sqrt_f64(power as f64 / t as f64)).min(f32::MAX as f64) as f32
+                }
+            }
+            Attenuation::Unreal { radius } | Attenuation::Frostbite { radius, .. } => {
+                self.bisect(t, radius)
+            }
+        };
+        math::clamp_or_lo(r, 0.0, f32::INFINITY)
+    }
+
+    /// Where a decreasing factor crosses `t` on `[0, radius]`.
+    fn bisect(&self, t: f32, radius: f32) -> f32 {
+        if !(radius > 0.0) || self.factor(0.0) < t {
+            return 0.0;
+        }
+        let (mut lo, mut hi) = (0.0f32, radius);
+        // factor(lo) ≥ t, factor(hi) = 0 < t. 64 halvings exhaust f32's resolution.
+        for _ in 0..64 {
+            let mid = lo + 0.5 * (hi - lo);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if self.factor(mid) >= t {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+}
+
+fn positive(field: &'static str, value: f32) -> Result<f32, PhongError> {
+    let v = error::non_negative(field, value)?;
+    if v == 0.0 {
+        Err(PhongError::OutOfRange {
+            field,
+            value,
+            min: f32::MIN_POSITIVE,
+            max: f32::MAX,
+        })
+    } else {
+        Ok(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cull_radius_is_where_the_factor_crosses() {
+        let forms = [
+            Attenuation::polynomial(1.0, 0.09, 0.032),
+            Attenuation::polynomial(0.0, 0.0, 2.0),
+            Attenuation::try_inverse_square(3.0).unwrap(),
+            Attenuation::try_unreal(8.0).unwrap(),
+            Attenuation::try_frostbite(8.0).unwrap(),
+        ];
+        for a in forms {
+            for t in [1e-3f32, 0.01, 0.1] {
+                let r = a.cull_radius(t);
+                assert!(r.is_finite(), "{a:?} t={t}");
+                assert!(a.factor(r * 1.0001 + 1e-6) < t, "{a:?} t={t} r={r}");
+                assert!(a.factor(r * 0.999) >= t, "{a:?} t={t} r={r}: not tight");
+            }
+        }
+    }
+}

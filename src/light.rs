@@ -1,0 +1,498 @@
+//! Light sources: directional, point and spot, and the colours they carry.
+//!
+//! Each kind is its own type implementing [`LightSource`], so shading code that is generic over the
+//! light type compiles a scene of directional lights with no distance or attenuation code at all.
+//! [`Light`] is the enum over all three, for scenes that mix them.
+
+use glam::Vec3;
+
+use crate::attenuation::Attenuation;
+use crate::error::{self, PhongError};
+use crate::math;
+use crate::normalize::{direction_and_length, sub_saturating};
+use crate::pow::lobe_pow;
+
+/// The three colours a light contributes: to the ambient, diffuse and specular terms.
+///
+/// ```text
+/// ambient term  += La ⊙ Ka · f,   diffuse term += Ld ⊙ Kd · f · diffuse lobe,
+/// specular term += Ls ⊙ Ks · f · specular lobe,      f = attenuation × spot factor
+/// ```
+///
+/// **Domain:** every channel finite and `≥ 0` (checked by [`try_new`](Self::try_new)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightColors {
+    ambient: Vec3,
+    diffuse: Vec3,
+    specular: Vec3,
+}
+
+/// Maps NaN and negatives to 0 and saturates at `f32::MAX`: the release-build fallback of the
+/// unchecked constructors.
+#[inline]
+pub(crate) fn sanitize_colour(c: Vec3) -> Vec3 {
+    Vec3::new(
+        math::clamp_or_lo(c.x, 0.0, math::MAX),
+        math::clamp_or_lo(c.y, 0.0, math::MAX),
+        math::clamp_or_lo(c.z, 0.0, math::MAX),
+    )
+}
+
+impl LightColors {
+    /// A light that contributes nothing.
+    pub const BLACK: Self = LightColors {
+        ambient: Vec3::ZERO,
+        diffuse: Vec3::ZERO,
+        specular: Vec3::ZERO,
+    };
+
+    /// Checked: every channel of the three colours finite and `≥ 0`.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{LightColors, PhongError};
+    /// let err = LightColors::try_new(Vec3::ZERO, Vec3::new(1.0, f32::NAN, 0.0), Vec3::ONE);
+    /// assert!(matches!(err, Err(PhongError::NonFinite { field: "light.diffuse.y", .. })));
+    /// ```
+    pub fn try_new(ambient: Vec3, diffuse: Vec3, specular: Vec3) -> Result<Self, PhongError> {
+        Ok(LightColors {
+            ambient: error::colour(
+                ["light.ambient.x", "light.ambient.y", "light.ambient.z"],
+                ambient,
+            )?,
+            diffuse: error::colour(
+                ["light.diffuse.x", "light.diffuse.y", "light.diffuse.z"],
+                diffuse,
+            )?,
+            specular: error::colour(
+                ["light.specular.x", "light.specular.y", "light.specular.z"],
+                specular,
+            )?,
+        })
+    }
+
+    /// Unchecked: debug builds assert the domain; release builds map NaN and negative channels to 0.
+    #[must_use]
+    pub fn new(ambient: Vec3, diffuse: Vec3, specular: Vec3) -> Self {
+        debug_assert!(
+            Self::try_new(ambient, diffuse, specular).is_ok(),
+            "LightColors::new: {:?}",
+            Self::try_new(ambient, diffuse, specular)
+        );
+        LightColors {
+            ambient: sanitize_colour(ambient),
+            diffuse: sanitize_colour(diffuse),
+            specular: sanitize_colour(specular),
+        }
+    }
+
+    /// One light colour split by strengths, as in LearnOpenGL's basic-lighting shader.
+    ///
+    /// ```text
+    /// La = ambient_strength · C,   Ld = diffuse_strength · C,   Ls = specular_strength · C
+    /// ```
+    ///
+    /// Checked like [`try_new`](Self::try_new); a negative strength is reported on the colour it
+    /// produces.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// let c = phong::LightColors::try_from_strengths(Vec3::ONE, 0.1, 1.0, 0.5).unwrap();
+    /// assert_eq!(c.ambient(), Vec3::splat(0.1));
+    /// assert_eq!(c.specular(), Vec3::splat(0.5));
+    /// ```
+    pub fn try_from_strengths(
+        color: Vec3,
+        ambient_strength: f32,
+        diffuse_strength: f32,
+        specular_strength: f32,
+    ) -> Result<Self, PhongError> {
+        error::colour(["light.color.x", "light.color.y", "light.color.z"], color)?;
+        error::non_negative("light.ambient_strength", ambient_strength)?;
+        error::non_negative("light.diffuse_strength", diffuse_strength)?;
+        error::non_negative("light.specular_strength", specular_strength)?;
+        Self::try_new(
+            color * ambient_strength,
+            color * diffuse_strength,
+            color * specular_strength,
+        )
+    }
+
+    /// A light of colour `C` and power `P` (a multiplier), with no ambient part: the
+    /// parametrisation of the Blinn-Phong shader on Wikipedia.
+    ///
+    /// ```text
+    /// La = 0,   Ld = Ls = P · C
+    /// ```
+    ///
+    /// Checked: `C` and `P` finite and `≥ 0`.
+    pub fn try_from_power(color: Vec3, power: f32) -> Result<Self, PhongError> {
+        error::colour(["light.color.x", "light.color.y", "light.color.z"], color)?;
+        error::non_negative("light.power", power)?;
+        Self::try_new(Vec3::ZERO, color * power, color * power)
+    }
+
+    /// `La`, the colour added to the ambient term.
+    #[must_use]
+    #[inline]
+    pub fn ambient(&self) -> Vec3 {
+        self.ambient
+    }
+    /// `Ld`, the colour of the diffuse term.
+    #[must_use]
+    #[inline]
+    pub fn diffuse(&self) -> Vec3 {
+        self.diffuse
+    }
+    /// `Ls`, the colour of the specular term.
+    #[must_use]
+    #[inline]
+    pub fn specular(&self) -> Vec3 {
+        self.specular
+    }
+}
+
+/// What a light delivers at one surface point: where it comes from and how strongly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Unit direction from the point to the light, or the zero vector when the point is at the
+    /// light's position (no direction exists; diffuse and specular are then 0).
+    pub direction: Vec3,
+    /// Attenuation × spot factor: finite and `≥ 0`.
+    pub factor: f32,
+}
+
+/// A light that can be sampled at a surface point. Implemented by every light kind.
+pub trait LightSource {
+    /// The light's ambient, diffuse and specular colours.
+    fn colors(&self) -> &LightColors;
+
+    /// The direction to the light and the attenuation × spot factor at point `p`.
+    ///
+    /// **Domain:** any finite `p`. **Returns** a unit or zero direction and a finite factor `≥ 0`.
+    fn sample(&self, p: Vec3) -> LightSample;
+}
+
+/// A light infinitely far away: one direction everywhere, no attenuation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionalLight {
+    direction: Vec3,
+    colors: LightColors,
+}
+
+impl DirectionalLight {
+    /// Checked: `direction` (from the surface *toward* the light) finite and non-zero; it is
+    /// normalised.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, LightColors, PhongError};
+    /// let sun = DirectionalLight::try_new(Vec3::new(0.0, 2.0, 0.0), LightColors::BLACK).unwrap();
+    /// assert_eq!(sun.direction(), Vec3::Y);
+    /// assert_eq!(
+    ///     DirectionalLight::try_new(Vec3::ZERO, LightColors::BLACK),
+    ///     Err(PhongError::ZeroDirection { field: "light.direction" })
+    /// );
+    /// ```
+    pub fn try_new(direction: Vec3, colors: LightColors) -> Result<Self, PhongError> {
+        Ok(DirectionalLight {
+            direction: error::direction("light.direction", direction)?,
+            colors,
+        })
+    }
+
+    /// Unchecked: `direction` is normalised; a zero or non-finite direction (debug builds assert)
+    /// becomes the zero vector, which lights nothing but the ambient term.
+    #[must_use]
+    pub fn new(direction: Vec3, colors: LightColors) -> Self {
+        debug_assert!(
+            Self::try_new(direction, colors).is_ok(),
+            "DirectionalLight::new: bad direction {direction}"
+        );
+        DirectionalLight {
+            direction: crate::normalize_or_zero(direction),
+            colors,
+        }
+    }
+
+    /// The unit direction toward the light.
+    #[must_use]
+    #[inline]
+    pub fn direction(&self) -> Vec3 {
+        self.direction
+    }
+}
+
+impl LightSource for DirectionalLight {
+    #[inline]
+    fn colors(&self) -> &LightColors {
+        &self.colors
+    }
+    /// `L` = the light's direction, factor 1: no distance, no attenuation work.
+    #[inline]
+    fn sample(&self, _p: Vec3) -> LightSample {
+        LightSample {
+            direction: self.direction,
+            factor: 1.0,
+        }
+    }
+}
+
+/// A light at a point, shining equally in all directions, fading with [`Attenuation`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    position: Vec3,
+    attenuation: Attenuation,
+    colors: LightColors,
+}
+
+impl PointLight {
+    /// Checked: a finite position and a valid attenuation ([`Attenuation::validated`]).
+    pub fn try_new(
+        position: Vec3,
+        attenuation: Attenuation,
+        colors: LightColors,
+    ) -> Result<Self, PhongError> {
+        finite_point("light.position", position)?;
+        Ok(PointLight {
+            position,
+            attenuation: attenuation.validated()?,
+            colors,
+        })
+    }
+
+    /// Unchecked (debug builds assert what [`try_new`](Self::try_new) checks).
+    #[must_use]
+    pub fn new(position: Vec3, attenuation: Attenuation, colors: LightColors) -> Self {
+        debug_assert!(
+            Self::try_new(position, attenuation, colors).is_ok(),
+            "PointLight::new: {:?}",
+            Self::try_new(position, attenuation, colors)
+        );
+        PointLight {
+            position,
+            attenuation,
+            colors,
+        }
+    }
+
+    /// The light's position.
+    #[must_use]
+    #[inline]
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+    /// The light's falloff.
+    #[must_use]
+    #[inline]
+    pub fn attenuation(&self) -> Attenuation {
+        self.attenuation
+    }
+}
+
+impl LightSource for PointLight {
+    #[inline]
+    fn colors(&self) -> &LightColors {
+        &self.colors
+    }
+    /// `L = normalize(P_light − p)`, factor = attenuation(‖P_light − p‖).
+    #[inline]
+    fn sample(&self, p: Vec3) -> LightSample {
+        let (direction, d) = direction_and_length(sub_saturating(self.position, p));
+        LightSample {
+            direction,
+            factor: self.attenuation.factor(d),
+        }
+    }
+}
+
+/// A point light restricted to a cone: OpenGL's fixed-function spot light.
+///
+/// ```text
+/// spot = (−L·D)^e   if −L·D ≥ cos(cutoff)
+///      = 0          otherwise
+/// ```
+///
+/// `D` is the unit axis the spot shines along (from the light outward), `L` the direction from the
+/// surface to the light, `e` the exponent (`GL_SPOT_EXPONENT`) and `cutoff` the half-angle of the cone
+/// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLight {
+    position: Vec3,
+    axis: Vec3,
+    cos_cutoff: f32,
+    exponent: f32,
+    attenuation: Attenuation,
+    colors: LightColors,
+}
+
+impl SpotLight {
+    /// Checked: finite position, non-zero axis, `cutoff ∈ [0, π/2]` radians, exponent finite `≥ 0`,
+    /// valid attenuation.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{Attenuation, LightColors, LightSource, PhongError, SpotLight};
+    /// let spot = SpotLight::try_new(
+    ///     Vec3::new(0.0, 5.0, 0.0), -Vec3::Y, 0.5, 2.0, Attenuation::None, LightColors::BLACK,
+    /// ).unwrap();
+    /// assert_eq!(spot.sample(Vec3::ZERO).factor, 1.0);          // on the axis
+    /// assert_eq!(spot.sample(Vec3::new(9.0, 0.0, 0.0)).factor, 0.0); // outside the cone
+    /// assert!(matches!(
+    ///     SpotLight::try_new(Vec3::ZERO, Vec3::X, 2.0, 1.0, Attenuation::None, LightColors::BLACK),
+    ///     Err(PhongError::OutOfRange { field: "light.cutoff", .. })
+    /// ));
+    /// ```
+    pub fn try_new(
+        position: Vec3,
+        axis: Vec3,
+        cutoff: f32,
+        exponent: f32,
+        attenuation: Attenuation,
+        colors: LightColors,
+    ) -> Result<Self, PhongError> {
+        finite_point("light.position", position)?;
+        let axis = error::direction("light.axis", axis)?;
+        let half_pi = core::f32::consts::FRAC_PI_2;
+        if !cutoff.is_finite() {
+            return Err(PhongError::NonFinite {
+                field: "light.cutoff",
+                value: cutoff,
+            });
+        }
+        if !(0.0..=half_pi).contains(&cutoff) {
+            return Err(PhongError::OutOfRange {
+                field: "light.cutoff",
+                value: cutoff,
+                min: 0.0,
+                max: half_pi,
+            });
+        }
+        Ok(SpotLight {
+            position,
+            axis,
+            // cos(π/2) rounds to -4.4e-8 in f32; the cone must not reach behind the light.
+            cos_cutoff: math::cos(cutoff).max(0.0),
+            exponent: error::non_negative("light.exponent", exponent)?,
+            attenuation: attenuation.validated()?,
+            colors,
+        })
+    }
+
+    /// The light's position.
+    #[must_use]
+    #[inline]
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+    /// The unit axis of the cone.
+    #[must_use]
+    #[inline]
+    pub fn axis(&self) -> Vec3 {
+        self.axis
+    }
+    /// `cos(cutoff)`.
+    #[must_use]
+    #[inline]
+    pub fn cos_cutoff(&self) -> f32 {
+        self.cos_cutoff
+    }
+    /// The spot exponent `e`.
+    #[must_use]
+    #[inline]
+    pub fn exponent(&self) -> f32 {
+        self.exponent
+    }
+    /// The light's falloff.
+    #[must_use]
+    #[inline]
+    pub fn attenuation(&self) -> Attenuation {
+        self.attenuation
+    }
+
+    /// The cone factor for unit `L` (from surface to light), in `[0, 1]`; 0 for a zero `L`.
+    #[must_use]
+    #[inline]
+    pub fn spot_factor(&self, l: Vec3) -> f32 {
+        let c = -l.dot(self.axis);
+        if l == Vec3::ZERO || c < self.cos_cutoff {
+            0.0
+        } else {
+            lobe_pow(c.min(1.0), self.exponent)
+        }
+    }
+}
+
+impl LightSource for SpotLight {
+    #[inline]
+    fn colors(&self) -> &LightColors {
+        &self.colors
+    }
+    /// Like [`PointLight`], times [`SpotLight::spot_factor`].
+    #[inline]
+    fn sample(&self, p: Vec3) -> LightSample {
+        let (direction, d) = direction_and_length(sub_saturating(self.position, p));
+        let spot = self.spot_factor(direction);
+        let factor = if spot > 0.0 {
+            (self.attenuation.factor(d) * spot).min(math::MAX)
+        } else {
+            0.0
+        };
+        LightSample { direction, factor }
+    }
+}
+
+/// Any light kind, for scenes that mix them. Costs one match per light and point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// See [`DirectionalLight`].
+    Directional(DirectionalLight),
+    /// See [`PointLight`].
+    Point(PointLight),
+    /// See [`SpotLight`].
+    Spot(SpotLight),
+}
+
+impl From<DirectionalLight> for Light {
+    fn from(l: DirectionalLight) -> Self {
+        Light::Directional(l)
+    }
+}
+impl From<PointLight> for Light {
+    fn from(l: PointLight) -> Self {
+        Light::Point(l)
+    }
+}
+impl From<SpotLight> for Light {
+    fn from(l: SpotLight) -> Self {
+        Light::Spot(l)
+    }
+}
+
+impl LightSource for Light {
+    #[inline]
+    fn colors(&self) -> &LightColors {
+        match self {
+            Light::Directional(l) => l.colors(),
+            Light::Point(l) => l.colors(),
+            Light::Spot(l) => l.colors(),
+        }
+    }
+    #[inline]
+    fn sample(&self, p: Vec3) -> LightSample {
+        match self {
+            Light::Directional(l) => l.sample(p),
+            Light::Point(l) => l.sample(p),
+            Light::Spot(l) => l.sample(p),
+        }
+    }
+}
+
+fn finite_point(field: &'static str, p: Vec3) -> Result<Vec3, PhongError> {
+    for value in p.to_array() {
+        if !value.is_finite() {
+            return Err(PhongError::NonFinite { field, value });
+        }
+    }
+    Ok(p)
+}

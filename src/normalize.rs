@@ -1,0 +1,167 @@
+//! Normalisation and length over the whole finite `f32` range.
+//!
+//! The textbook `v / ‖v‖` fails at both ends of the range: `v·v` overflows to `+∞` for components
+//! above about 1.8e19 (giving a zero vector), and underflows to zero or a subnormal for components
+//! below about 1e-19 (giving NaN or a wrong direction). GLSL's `normalize` (measured in Mesa) has both
+//! failures. The functions here rescale by a power of two first, which is exact, so the answer is the
+//! correctly scaled direction for every finite input.
+
+use glam::Vec3;
+
+use crate::math;
+
+/// Squared lengths in `[LO, HI]` are normalised directly; outside it the vector is rescaled first.
+const LO: f32 = 1.0e-30;
+const HI: f32 = 1.0e30;
+
+/// Multiplies by 2^k exactly by rescaling so the largest component lands in [1, 2).
+#[inline]
+fn rescaled(v: Vec3) -> Vec3 {
+    let m = math::abs(v.x).max(math::abs(v.y)).max(math::abs(v.z));
+    // Exponent of m, and a power of two 2^-e that brings m into [1, 2). For subnormal m the
+    // exponent field is 0: scale by 2^64 first, then once more.
+    let mut v = v;
+    let mut m = m;
+    if m < f32::MIN_POSITIVE {
+        v *= 18_446_744_073_709_551_616.0; // 2^64, exact
+        m *= 18_446_744_073_709_551_616.0;
+    }
+    // 2^-e must be a normal f32: exponent field 127 - e in [1, 254], so e in [-127, 126]. For
+    // e = 127 (m ≥ 2^127) that leaves m scaled into [2, 4): still safe to square.
+    let e = (((m.to_bits() >> 23) & 0xff) as i32 - 127).min(126);
+    let scale = f32::from_bits(((127 - e) as u32) << 23);
+    v * scale
+}
+
+/// The unit vector in the direction of `v`, or the zero vector when `v` is zero or not finite.
+///
+/// ```text
+/// normalize_or_zero(v) = v / ‖v‖    (v ≠ 0, finite)
+///                      = 0          (v = 0, or any component NaN/±∞)
+/// ```
+///
+/// **Domain:** any `Vec3`. Unlike `v.normalize_or_zero()` in glam or `normalize` in GLSL, it is exact
+/// (to a few ulps) for huge components (up to `f32::MAX`) and for tiny and subnormal ones: it first
+/// scales `v` by a power of two, which changes no digit.
+///
+/// **Degenerate input:** the zero vector for `v = 0`, or for a non-finite component.
+///
+/// ```
+/// use glam::Vec3;
+/// let n = phong::normalize_or_zero(Vec3::new(1e-30, 0.0, 1e-30));
+/// assert!((n.length() - 1.0).abs() < 1e-6);
+/// assert_eq!(phong::normalize_or_zero(Vec3::ZERO), Vec3::ZERO);
+/// assert_eq!(phong::normalize_or_zero(Vec3::new(3e38, 0.0, 0.0)), Vec3::X);
+/// ```
+#[must_use]
+#[inline]
+pub fn normalize_or_zero(v: Vec3) -> Vec3 {
+    let l2 = v.length_squared();
+    if (LO..=HI).contains(&l2) {
+        return v * (1.0 / math::sqrt(l2));
+    }
+    if !v.is_finite() || v == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let s = rescaled(v);
+    s * (1.0 / math::sqrt(s.length_squared()))
+}
+
+/// `Some(v / ‖v‖)`, or `None` when `v` is zero or not finite. See [`normalize_or_zero`].
+///
+/// ```
+/// use glam::Vec3;
+/// assert_eq!(phong::try_normalize(Vec3::ZERO), None);
+/// assert_eq!(phong::try_normalize(Vec3::new(0.0, 2.0, 0.0)), Some(Vec3::Y));
+/// ```
+#[must_use]
+#[inline]
+pub fn try_normalize(v: Vec3) -> Option<Vec3> {
+    let n = normalize_or_zero(v);
+    (n != Vec3::ZERO).then_some(n)
+}
+
+/// The length ‖v‖ = √(v·v), without overflow or underflow in `v·v`, saturated to `f32::MAX`.
+///
+/// **Domain:** any finite `Vec3`. **Returns** a finite value `≥ 0`: a true length above `f32::MAX`
+/// (possible only when components are near `f32::MAX`) saturates to `f32::MAX`; a non-finite
+/// component gives `f32::MAX` for ±∞ and 0 for NaN.
+///
+/// ```
+/// use glam::Vec3;
+/// assert_eq!(phong::length(Vec3::new(3e30, 4e30, 0.0)), 5e30);
+/// assert_eq!(phong::length(Vec3::new(3e-30, 4e-30, 0.0)), 5e-30);
+/// ```
+#[must_use]
+#[inline]
+pub fn length(v: Vec3) -> f32 {
+    let l2 = v.length_squared();
+    if (LO..=HI).contains(&l2) {
+        return math::sqrt(l2);
+    }
+    if v.is_nan() {
+        return 0.0;
+    }
+    if !v.is_finite() {
+        return math::MAX;
+    }
+    if v == Vec3::ZERO {
+        return 0.0;
+    }
+    let m = math::abs(v.x).max(math::abs(v.y)).max(math::abs(v.z));
+    let s = rescaled(v);
+    // ‖v‖ = m' · ‖s‖ where s = v·2^-e; recover 2^e from m / |largest component of s|.
+    let ms = math::abs(s.x).max(math::abs(s.y)).max(math::abs(s.z));
+    let l = math::sqrt(s.length_squared()) * (m / ms);
+    if l.is_finite() { l } else { math::MAX }
+}
+
+/// `a − b` with each component saturated to `[−f32::MAX, f32::MAX]`.
+///
+/// Differences of finite points can overflow (e.g. `3e38 − (−3e38)`); the total paths use this so
+/// the direction stays finite. The direction of a saturated difference is approximate.
+#[inline]
+pub(crate) fn sub_saturating(a: Vec3, b: Vec3) -> Vec3 {
+    let d = a - b;
+    d.max(Vec3::splat(-math::MAX)).min(Vec3::splat(math::MAX))
+}
+
+/// The unit direction of `v` and its length, sharing one square root on the common path.
+///
+/// Returns `(0, 0)` for the zero vector; the length saturates as in [`length`].
+#[inline]
+pub(crate) fn direction_and_length(v: Vec3) -> (Vec3, f32) {
+    let l2 = v.length_squared();
+    if (LO..=HI).contains(&l2) {
+        let d = math::sqrt(l2);
+        return (v * (1.0 / d), d);
+    }
+    (normalize_or_zero(v), length(v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subnormal_and_huge_directions_are_exact() {
+        let tiny = normalize_or_zero(Vec3::new(1e-40, -1e-40, 0.0));
+        let expect = Vec3::new(1.0, -1.0, 0.0) / 2f32.sqrt();
+        assert!((tiny - expect).length() < 1e-6, "{tiny}");
+        let huge = normalize_or_zero(Vec3::new(f32::MAX, f32::MAX, f32::MAX));
+        assert!((huge.length() - 1.0).abs() < 1e-6, "{huge}");
+    }
+
+    #[test]
+    fn length_is_scaled_correctly_everywhere() {
+        for &s in &[1e-44f32, 1e-38, 1e-20, 1.0, 1e20, 1e37] {
+            let v = Vec3::new(3.0 * s, 4.0 * s, 0.0);
+            let l = length(v);
+            let rel = ((l as f64) - 5.0 * s as f64).abs() / (5.0 * s as f64);
+            // Subnormal inputs carry few significant bits; 3·1e-44 has only ~5.
+            let tol = if s < 1e-38 { 0.2 } else { 1e-6 };
+            assert!(rel < tol, "s={s}: {l}");
+        }
+        assert_eq!(length(Vec3::splat(f32::MAX)), f32::MAX);
+    }
+}
