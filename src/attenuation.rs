@@ -25,6 +25,11 @@ use crate::math;
 ///
 /// [`cull_radius`]: Attenuation::cull_radius
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub enum Attenuation {
     /// No falloff: the factor is 1 at every distance (the light never fades). The default.
     #[default]

@@ -34,6 +34,7 @@ use crate::pow::PowStrategy;
 /// assert!((BlinnPhong::default().specular(&g, 128.0) - 1.0).abs() < 1e-5);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BlinnPhong {
     /// How the specular lobe behaves when `N·L ≤ 0`.
     pub gate: SpecularGate,

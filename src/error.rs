@@ -94,6 +94,11 @@ pub(crate) fn direction(field: &'static str, value: glam::Vec3) -> Result<glam::
             return Err(PhongError::NonFinite { field, value: c });
         }
     }
+    // A vector that is already unit to within rounding is kept bit for bit, so a direction read
+    // back from a file (or given as exactly unit) is not nudged by another normalisation.
+    if (value.length_squared() - 1.0).abs() <= 4.0 * f32::EPSILON {
+        return Ok(value);
+    }
     let unit = crate::normalize_or_zero(value);
     if unit == glam::Vec3::ZERO {
         Err(PhongError::ZeroDirection { field })

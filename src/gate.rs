@@ -12,6 +12,7 @@
 /// specular halo"): with `L` and `V` both below the surface, `R·V` can reach 1. Keep
 /// [`None`](Self::None) only to reproduce code that has no gate.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SpecularGate {
     /// Specular is zero unless `N·L > 0`. The default.
     #[default]

@@ -103,6 +103,8 @@ mod normalize;
 mod phong;
 mod pow;
 mod reflect;
+#[cfg(feature = "serde")]
+mod serde_validation;
 mod shade;
 mod triangle;
 mod vertex_normals;

@@ -21,6 +21,11 @@ use crate::pow::lobe_pow;
 ///
 /// **Domain:** every channel finite and `≥ 0` (checked by [`try_new`](Self::try_new)).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct LightColors {
     ambient: Vec3,
     diffuse: Vec3,
@@ -175,6 +180,11 @@ pub trait LightSource {
 
 /// A light infinitely far away: one direction everywhere, no attenuation.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct DirectionalLight {
     direction: Vec3,
     colors: LightColors,
@@ -240,6 +250,11 @@ impl LightSource for DirectionalLight {
 
 /// A light at a point, shining equally in all directions, fading with [`Attenuation`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct PointLight {
     position: Vec3,
     attenuation: Attenuation,
@@ -317,9 +332,17 @@ impl LightSource for PointLight {
 /// surface to the light, `e` the exponent (`GL_SPOT_EXPONENT`) and `cutoff` the half-angle of the cone
 /// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]`).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct SpotLight {
     position: Vec3,
     axis: Vec3,
+    cutoff: f32,
+    // Derived from `cutoff`; recomputed when deserialising.
+    #[cfg_attr(feature = "serde", serde(skip))]
     cos_cutoff: f32,
     exponent: f32,
     attenuation: Attenuation,
@@ -371,6 +394,7 @@ impl SpotLight {
         Ok(SpotLight {
             position,
             axis,
+            cutoff,
             // cos(π/2) rounds to -4.4e-8 in f32; the cone must not reach behind the light.
             cos_cutoff: math::cos(cutoff).max(0.0),
             exponent: error::non_negative("light.exponent", exponent)?,
@@ -390,6 +414,12 @@ impl SpotLight {
     #[inline]
     pub fn axis(&self) -> Vec3 {
         self.axis
+    }
+    /// The cone's half-angle in radians, in `[0, π/2]`.
+    #[must_use]
+    #[inline]
+    pub fn cutoff(&self) -> f32 {
+        self.cutoff
     }
     /// `cos(cutoff)`.
     #[must_use]
@@ -444,6 +474,7 @@ impl LightSource for SpotLight {
 
 /// Any light kind, for scenes that mix them. Costs one match per light and point.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Light {
     /// See [`DirectionalLight`].
     Directional(DirectionalLight),

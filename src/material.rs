@@ -16,6 +16,11 @@ use crate::math;
 /// allowed: it gives the broad lobes where Phong's cut-off shows). Checked by
 /// [`try_new`](Self::try_new), which names the bad field.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Material {
     ambient: Vec3,
     diffuse: Vec3,

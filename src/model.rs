@@ -31,6 +31,7 @@ pub trait ReflectionModel {
 ///
 /// Costs one `match` per lobe; use the concrete types when the model is known at compile time.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Model {
     /// See [`Lambert`].
     Lambert(Lambert),

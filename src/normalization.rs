@@ -23,6 +23,7 @@ use crate::math;
 /// factor: `(s+2)/(2π)` already makes the cosine-weighted lobe integrate to 1 at normal incidence.
 /// Derivations: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#energy-normalisation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Normalization {
     /// The classic lobes, as in OpenGL and LearnOpenGL. The default.
     #[default]

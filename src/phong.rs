@@ -30,6 +30,7 @@ use crate::pow::PowStrategy;
 /// assert_eq!(Phong::default().specular(&g, 32.0), 1.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Phong {
     /// How the specular lobe behaves when `N·L ≤ 0`.
     pub gate: SpecularGate,

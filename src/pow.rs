@@ -21,6 +21,7 @@ use crate::math;
 /// docs/accuracy.md and guarded by a test.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PowStrategy {
     /// `powf` from `std` or `libm`: correctly rounded to within 1 ulp, but a scalar call that
     /// blocks vectorisation.

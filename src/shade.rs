@@ -12,6 +12,7 @@ use crate::normalize_or_zero;
 
 /// Where the viewer is.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Viewer {
     /// A viewer at this point (a camera position): `V = normalize(eye − p)` per point.
     At(Vec3),
@@ -35,6 +36,7 @@ pub struct Scene<'a, L> {
 
 /// The four terms of the Phong-family equation at one point, kept apart.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Terms {
     /// `Ka ⊙ (Ia + Σ La·f)`
     pub ambient: Vec3,
