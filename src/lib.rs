@@ -90,6 +90,7 @@ mod color;
 mod error;
 mod face_forward;
 mod gate;
+pub mod gpu;
 mod halfway;
 mod incidence;
 mod lambert;
