@@ -107,6 +107,7 @@ mod reflect;
 #[cfg(feature = "serde")]
 mod serde_validation;
 mod shade;
+mod shading_rate;
 mod triangle;
 mod vertex_normals;
 
@@ -133,6 +134,7 @@ pub use phong::Phong;
 pub use pow::PowStrategy;
 pub use reflect::reflect;
 pub use shade::{Scene, Terms, Viewer, shade};
+pub use shading_rate::{gouraud_error_bound, gouraud_within_tolerance};
 pub use triangle::{triangle_area_normal, triangle_normal, try_triangle_normal};
 pub use vertex_normals::vertex_normals;
 
