@@ -162,6 +162,55 @@ proptest! {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The cosine forms used by the lobes agree with the vector forms
+// ---------------------------------------------------------------------------------------------
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn r_dot_v_from_cosines_equals_the_reflected_vector(
+        n in unit_vec3(), l in unit_vec3(), v in unit_vec3()
+    ) {
+        // R·V = (2(N·L)N − L)·V = 2(N·L)(N·V) − L·V holds exactly for any N, unit or not, so only
+        // rounding separates the two: the cosine form carries ≤ 18U (three dot products of ≤ 3U,
+        // two products, the difference), the vector form ≤ 9U (reflect) on ‖V‖ ≈ 1; clamping to
+        // [−1, 1] only moves the cosine form closer. Bound: 32U.
+        let g = Incidence::new(n, l, v);
+        let vector = d(phong::reflect(n, l)).dot(d(v));
+        let err = (g.r_dot_v() as f64 - vector).abs();
+        prop_assert!(
+            err <= 32.0 * U,
+            "R·V: cosines {} vs vector {vector} (err {err:e}) for n={n} l={l} v={v}", g.r_dot_v()
+        );
+    }
+
+    #[test]
+    fn n_dot_h_squared_from_cosines_equals_the_halfway_vector(
+        n in unit_vec3(), l in unit_vec3(), v in unit_vec3()
+    ) {
+        // (N·H)² = (N·L + N·V)²/(2 + 2L·V) with H = (L+V)/‖L+V‖ and ‖L+V‖² = 2 + 2L·V for unit
+        // L, V. The cosine form rounds the numerator's base by ≤ 7U and the denominator
+        // den = 2 + 2L·V by ≤ 7U absolute, and the inputs are unit only to 3U each (≤ 6U on
+        // ‖L+V‖²); the vector form is accurate to ≤ 16U. So the two differ by at most
+        // 16U + 14U/√den + 13U/den: the condition grows as L approaches −V (den → 0), where the
+        // cancellation in 2 + 2L·V leaves few digits. Bound: 32U + 16U/√den + 16U/den, with den
+        // taken exactly (in f64) from the vectors.
+        let g = Incidence::new(n, l, v);
+        let h = phong::halfway(l, v);
+        let vector = d(n).dot(d(h)).max(0.0).powi(2);
+        let den = (d(l) + d(v)).length_squared();
+        let tol = 32.0 * U + 16.0 * U / den.sqrt() + 16.0 * U / den;
+        let err = (g.n_dot_h_squared() as f64 - vector).abs();
+        prop_assert!(
+            err <= tol,
+            "(N·H)²: cosines {} vs vector {vector} (err {err:e} > {tol:e}, ‖L+V‖² = {den:e})",
+            g.n_dot_h_squared()
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Blinn-Phong with 4s tracks Phong with s near the highlight
 // ---------------------------------------------------------------------------------------------
 

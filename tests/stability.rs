@@ -1226,23 +1226,34 @@ fn srgb_encode_of_the_most_negative_float_is_finite() {
 }
 
 #[test]
-#[ignore = "crate bug (precision): at a grazing mirror configuration (N·L = 1e-7, V = R) L·V rounds \
-            to −1 in f32, so Incidence::n_dot_h_squared takes its L = −V branch and Blinn-Phong \
-            gives 0, while halfway(L, V) = N exactly (the halfway docs say both paths agree)"]
+#[ignore = "crate bug (precision): at a grazing mirror configuration (V = R, L within ~3e-4 rad of \
+            the surface) 2 + 2L·V cancels in f32 (to 0 below ~1e-4 rad), so \
+            Incidence::n_dot_h_squared collapses and Blinn-Phong gives ~0 instead of 1, while \
+            halfway(L, V) = N exactly (the halfway docs say both paths agree)"]
 fn blinn_sees_the_grazing_mirror_highlight() {
+    // Measured on the foundation commit (s = 32, V = R, θ = elevation of L above the surface):
+    //   θ = 1e-2: 0.99682 (should be 1: 2 + 2L·V ≈ 4θ² loses U/(2θ²) relatively, times s/2),
+    //   θ = 3e-4: 0.0111, θ ≤ 1e-4: 0 — while halfway(L, V) = N in every case.
     let n = Vec3::Z;
-    let l = Vec3::new(1.0, 0.0, 1e-7).normalize();
-    let v = phong::reflect(n, l);
-    // The vector path: L + V = (0, 0, 2e-7) ≠ 0, so H exists and is N.
-    let h = phong::halfway(l, v);
-    assert_eq!(h, Vec3::Z, "setup: the halfway vector is N");
-    let g = Incidence::new(n, l, v);
-    let blinn = BlinnPhong::default().specular(&g, 32.0);
-    assert!(
-        (blinn - 1.0).abs() < 1e-3,
-        "Blinn-Phong at N·L = 1e-7, V = R: got {blinn}, but (N·H)^s = {} ({g:?})",
-        n.dot(h).powf(32.0)
-    );
+    for theta in [3e-4f32, 1e-4, 1e-5, 1e-7] {
+        let l = Vec3::new(theta.cos(), 0.0, theta.sin());
+        let v = phong::reflect(n, l);
+        // The vector path: L + V = (0, 0, 2 sin θ) ≠ 0, so H exists and is N.
+        let h = phong::halfway(l, v);
+        assert_eq!(
+            h,
+            Vec3::Z,
+            "setup: the halfway vector is N at θ = {theta:e}"
+        );
+        let g = Incidence::new(n, l, v);
+        let blinn = BlinnPhong::default().specular(&g, 32.0);
+        assert!(
+            blinn > 0.5,
+            "Blinn-Phong at a grazing mirror, θ = {theta:e}: got {blinn}, but (N·H)^32 = {} \
+             ({g:?})",
+            n.dot(h).powf(32.0)
+        );
+    }
 }
 
 #[test]
