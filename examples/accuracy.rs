@@ -259,6 +259,12 @@ fn sliver_section(o: &mut String) {
             phong_worst = res[3].1.worst;
         }
     }
+    o.push_str(
+        "A median of 0 means most triangles come out exact: far from the origin the `f32` \
+         vertices sit on a coarse grid, their edges are small multiples of one spacing and the \
+         `f32` products are exact. `phong::triangle_normal` returns a unit vector rounded to \
+         `f32`, so its floor is the rounding of the normalised components, about 1e-8 rad.\n\n",
+    );
     let ratio = naive_worst / phong_worst;
     let _ = writeln!(
         o,
@@ -437,9 +443,11 @@ fn four_times_section(o: &mut String) {
     o.push('\n');
     o.push_str(
         "**Out of the plane of incidence** the rule changes. Turning `V` away from `R` by `δ` \
-         perpendicular to the plane moves `H` by only `δ / (2 cos θi)`, so the exponent ratio that \
-         matches the lobes' widths there is `4 cos² θi`, not 4: the Blinn-Phong highlight is \
-         stretched across the plane at oblique incidence. The ratio `s_Blinn / s_Phong` that makes \
+         perpendicular to the plane moves `H` by `δ / (2 cos θi)`, more than the `δ/2` of the \
+         plane, so the exponent ratio that matches the lobes' widths there is `4 cos² θi`, not \
+         4: with `4s` the Blinn-Phong highlight is narrower across the plane of incidence than \
+         Phong's, so it looks stretched along that plane (the streaks of light on water at \
+         grazing incidence). The ratio `s_Blinn / s_Phong` that makes \
          both lobes fall to one half at the same `δ` (s = 64):\n\n",
     );
     o.push_str("| θi | in plane | predicted | out of plane | predicted 4 cos² θi |\n|---:|---:|---:|---:|---:|\n");

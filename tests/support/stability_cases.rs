@@ -488,7 +488,10 @@ pub fn cases() -> Vec<Case> {
                 code: "normalize_or_zero(n)",
                 run: || v(phong::normalize_or_zero(Vec3::new(1e-40, -1e-40, 0.0))),
                 claim: "(0.7071, −0.7071, 0): the exact direction",
-                check: |x| close(x, &[0.707_106_8, -0.707_106_8, 0.0], 1e-6),
+                check: |x| {
+                    let h = core::f32::consts::FRAC_1_SQRT_2;
+                    close(x, &[h, -h, 0.0], 1e-6)
+                },
             },
         },
         Case {
