@@ -174,6 +174,7 @@ fn accuracy_md() -> String {
     o.push_str("## Colour\n\n");
     table(&mut o, &find(&["srgb_", "gamma_", "linear_to_srgb8"]));
 
+    findings_section(&mut o);
     shading_section(&mut o);
     sliver_section(&mut o);
     halfway_section(&mut o);
@@ -511,4 +512,115 @@ fn stability_md() -> String {
 fn values(x: &[f32]) -> String {
     let parts: Vec<String> = x.iter().map(|&v| format!("{v:?}")).collect();
     format!("[{}]", parts.join(", "))
+}
+
+/// The crate behaviours the measurement exposed, each recomputed here at one input.
+fn findings_section(o: &mut String) {
+    o.push_str("## What the measurement exposed\n\n");
+    o.push_str(
+        "Single inputs taken from the worst cases above, recomputed by this run: the crate's \
+         answer next to the reference's.\n\n",
+    );
+    o.push_str("| behaviour | input | `phong` | reference |\n|---|---|---:|---:|\n");
+    let eps = 1e-4f64;
+    let (n, l, v) = grazing_opposite(eps);
+    let got = BlinnPhong::default().specular(&Incidence::new(n, l, v), 32.0);
+    let want = reference::blinn_specular(
+        &BlinnPhong::default(),
+        n.as_dvec3(),
+        l.as_dvec3(),
+        v.as_dvec3(),
+        32.0,
+    );
+    let _ = writeln!(
+        o,
+        "| Blinn-Phong's `(N·H)²` cancels when L·V → −1: the grazing mirror highlight vanishes | \
+         N = Z, L = (cos ε, 0, sin ε), V = (−cos ε, 0, sin ε), ε = 1e-4, s = 32 | {} | {} |",
+        g(got as f64),
+        g(want)
+    );
+    let n = Vec3::new(-0.158_832_65, -0.409_487_78, 0.898_382_96);
+    let l = Vec3::new(-0.988_853_8, -0.000_211_545_51, 0.148_889_68);
+    let v = Vec3::new(0.988_897, -0.000_123_234_2, -0.148_602_28);
+    let s = 612.556_2f32;
+    let got = BlinnPhong::default().specular(&Incidence::new(n, l, v), s);
+    let want = reference::blinn_specular(
+        &BlinnPhong::default(),
+        n.as_dvec3(),
+        l.as_dvec3(),
+        v.as_dvec3(),
+        s as f64,
+    );
+    let _ = writeln!(
+        o,
+        "| … and, with the viewer below the surface, a full highlight appears | N = {n:?}, \
+         L = {l:?}, V = {v:?}, s = {s} | {} | {} |",
+        g(got as f64),
+        g(want)
+    );
+    let m = glam::Mat3::from_cols(
+        Vec3::new(1.568_944_8, 3.708_243_1, 2.167_867_7),
+        Vec3::new(657.625_06, -215.000_84, -693.123_2),
+        Vec3::new(-2.219_804_6e-6, -3.044_205_6e-6, -1.073_352_9e-6),
+    );
+    let nn = Vec3::new(-0.907_141_8, -0.236_130_52, -0.348_333_4);
+    let got = phong::transform_normal(phong::normal_matrix(m), nn);
+    let want = reference::transform_normal(reference::dm3(m), nn.as_dvec3());
+    // det M as the crate computes it (a·(b×c) in f32) and in f64 (ample here: the relative
+    // error of the f64 triple product is far below the 1.6e-9 relative size of this det).
+    let det32 = m.x_axis.dot(m.y_axis.cross(m.z_axis));
+    let det64 = reference::dm3(m).determinant();
+    let _ = writeln!(
+        o,
+        "| `normal_matrix` takes sign(det) from an `f32` det that rounds to the wrong sign for a \
+         nearly singular M (det {} exactly, {} in `f32`): every normal flips | columns {:?}, \
+         {:?}, {:?}; n = {nn:?} | {got:?} | {:?} |",
+        g(det64),
+        g(det32 as f64),
+        m.x_axis,
+        m.y_axis,
+        m.z_axis,
+        want.as_vec3()
+    );
+    let u = phong::Attenuation::try_unreal(0.717_613_1).unwrap();
+    let t = 0.999_336_24f32;
+    let _ = writeln!(
+        o,
+        "| `cull_radius` is documented to 1e-6 relative, but where the factor is flat (t near \
+         factor(0)) the `f32` factor's rounding moves the root | Unreal, r = 0.7176131, \
+         t = 0.99933624 | {} | {} |",
+        u.cull_radius(t),
+        reference::cull_radius(&u, t as f64)
+    );
+    let f = phong::Attenuation::try_frostbite(89.419_82).unwrap();
+    let d = 89.417_44f32;
+    let _ = writeln!(
+        o,
+        "| the window `1 − (d/r)⁴` cancels as d → r (relative error up to ~2e-3 where the factor \
+         is ~1e-12) | Frostbite, r = 89.41982, d = 89.41744 | {:e} | {:e} |",
+        f.factor(d),
+        reference::attenuation(&f, d as f64)
+    );
+    let a = phong::Attenuation::try_inverse_square(1e3).unwrap();
+    let _ = writeln!(
+        o,
+        "| the inverse-square factor underflows to 0 once d² overflows (d > 1.8e19), while P/d² is \
+         still a normal `f32` | P = 1e3, d = 2e19 | {:e} | {:e} |",
+        a.factor(2e19),
+        reference::attenuation(&a, 2e19)
+    );
+    let _ = writeln!(
+        o,
+        "| `srgb_encode`'s linear segment overflows for x < −f32::MAX/12.92 | x = −f32::MAX | {} | \
+         {:e} |",
+        phong::srgb_encode(-f32::MAX),
+        reference::srgb_encode(-(f32::MAX as f64))
+    );
+    let _ = writeln!(
+        o,
+        "| `normal_matrix` of entries near f32::MAX is NaN (∞ − ∞ in the cross products), \
+         documented only as overflow | all nine entries f32::MAX | {:?} | singular: 0 |",
+        phong::normal_matrix(glam::Mat3::from_cols_array(&[f32::MAX; 9])).x_axis
+    );
+    o.push('\n');
 }

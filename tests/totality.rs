@@ -499,3 +499,47 @@ fn srgb_encode_of_huge_negatives() {
     let y = phong::srgb_encode(-f32::MAX);
     assert!(y.is_finite(), "srgb_encode(-f32::MAX) = {y}");
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn unchecked_constructors_and_accessors_are_total_on_their_domain(
+        c in colour(), d in colour(), e in colour(), s in shininess(), t in colour(), u in colour(),
+        dir in unit_vec3(), p in finite_vec3(), a in valid_attenuation(),
+    ) {
+        // Unchecked constructors: valid fields (debug builds assert them).
+        let m = Material::new(c, d, e, s).textured(t, u);
+        for x in [m.ambient(), m.diffuse(), m.specular(), m.emission()] {
+            prop_assert!(x.is_finite() && x.min_element() >= 0.0);
+        }
+        prop_assert!(m.shininess().is_finite() && m.shininess() >= 0.0);
+        let colors = LightColors::new(c, d, e);
+        let dir = if dir == Vec3::ZERO { Vec3::Z } else { dir };
+        let sun = DirectionalLight::new(dir, colors);
+        prop_assert!(unit_or_zero(sun.direction()));
+        let point = PointLight::new(p, a, colors);
+        prop_assert_eq!(point.position(), p);
+        prop_assert_eq!(point.attenuation(), a);
+        if let Attenuation::Polynomial { constant, linear, quadratic } = a {
+            let q = Attenuation::polynomial(constant, linear, quadratic);
+            prop_assert!(q.factor(1.0).is_finite());
+        }
+    }
+
+    #[test]
+    fn checked_constructors_report_errors_that_display(x in finite(), v in finite_vec3()) {
+        let errs = [
+            Attenuation::try_polynomial(x, -1.0, 0.0).err(),
+            Attenuation::try_unreal(-x.abs()).err(),
+            Material::try_new(v, v, v, -1.0).err(),
+            LightColors::try_new(Vec3::new(f32::NAN, 0.0, 0.0), v, v).err(),
+            DirectionalLight::try_new(Vec3::ZERO, LightColors::BLACK).err(),
+            SpotLight::try_new(v, Vec3::Z, 2.0, 1.0, Attenuation::None, LightColors::BLACK).err(),
+        ];
+        for e in errs.into_iter().flatten() {
+            let msg = e.to_string();
+            prop_assert!(!msg.is_empty(), "{e:?}");
+        }
+    }
+}
