@@ -280,7 +280,7 @@ impl Attenuation {
                 // In f64: the root formula subtracts, and 1/t may be large.
                 let (c, l, q) = (constant as f64, linear as f64, quadratic as f64);
                 let k = 1.0 / t as f64 - c; // need l·d + q·d² > k
-                if self.factor(0.0) < t {
+                let r = if self.factor(0.0) < t {
                     0.0
                 } else if l == 0.0 && q == 0.0 {
                     f64::INFINITY
@@ -289,8 +289,13 @@ impl Attenuation {
                 } else {
                     // Stable root of q·d² + l·d − k = 0: d = 2k / (l + √(l² + 4qk)).
                     2.0 * k / (l + math::sqrt_f64(l * l + 4.0 * q * k))
+                };
+                // Saturate a finite root at f32::MAX, but keep the documented +∞ ("never fades").
+                if r.is_infinite() {
+                    f32::INFINITY
+                } else {
+                    r.min(f32::MAX as f64) as f32
                 }
-                .min(f32::MAX as f64) as f32
             }
             Attenuation::InverseSquare { power, .. } => {
                 if self.factor(0.0) < t {

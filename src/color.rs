@@ -16,7 +16,8 @@ use crate::math;
 /// ```
 ///
 /// **Domain:** any finite `x`; `[0, 1]` maps onto `[0, 1]`. Values above 1 follow the same curve
-/// (useful before tone mapping), negatives the linear segment. **Degenerate input:** NaN gives 0.
+/// (useful before tone mapping), negatives the linear segment, saturated at `−f32::MAX`.
+/// **Degenerate input:** NaN gives 0.
 ///
 /// ```
 /// assert_eq!(phong::srgb_encode(0.0), 0.0);
@@ -29,7 +30,8 @@ pub fn srgb_encode(x: f32) -> f32 {
     if x.is_nan() {
         0.0
     } else if x <= 0.003_130_8 {
-        12.92 * x
+        // Saturated: 12.92·x overflows for x below −2.6e37.
+        (12.92 * x).max(-math::MAX)
     } else {
         1.055 * math::powf(x, 1.0 / 2.4) - 0.055
     }

@@ -15,7 +15,8 @@ use glam::Vec3;
 /// map to `−N`.
 ///
 /// **Domain:** any vectors; none needs to be unit (only the sign of `Nref·V` is used).
-/// **Degenerate input:** a zero `V` or `Nref` gives `−N`, as GLSL does.
+/// **Degenerate input:** a zero `V` or `Nref` gives `−N`, as GLSL does; so do vectors so small
+/// (below about 1e-19 per component) that `Nref·V` underflows to zero.
 ///
 /// Two-sided lighting uses `face_forward(n, v, n)`: the normal flipped to the viewer's side.
 ///

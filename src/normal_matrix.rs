@@ -21,8 +21,11 @@ use crate::normalize_or_zero;
 ///
 /// **Degenerate input:** for a singular `M` (e.g. a scale of 0 along one axis, which flattens the
 /// object) the cofactor matrix still maps normals to the normals of the flattened surface, and to
-/// zero where no normal exists. Scale: entries grow like the product of two columns, so matrices
-/// with entries beyond about 1e19 overflow.
+/// zero where no normal exists. Scale: entries are products of two entries of `M`, so matrices
+/// whose entries are all beyond about 1e19 overflow, and those whose entries are all below about
+/// 1e-19 underflow to zero (then [`transform_normal`] returns the zero vector). Scale such a
+/// matrix by a power of two first: the normal matrix of `c·M` is `c²` times that of `M`, the same
+/// directions.
 ///
 /// Derivation: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-normal-matrix).
 ///

@@ -80,7 +80,10 @@ impl Terms {
 ///
 /// **Degenerate input** (no NaN, no panic, for finite input):
 /// - a zero `normal`: no diffuse or specular (only ambient and emission);
-/// - the point at a light's position: that light adds ambient only (finite attenuation at `d = 0`);
+/// - the point at a point light's position: that light adds ambient only (finite attenuation at
+///   `d = 0`); at a spot light's position the direction to the light, and so the cone test, is
+///   undefined, and the spot adds nothing ([`SpotLight::spot_factor`](crate::SpotLight::spot_factor)
+///   is 0 for a zero `L`);
 /// - the viewer at the point (or a zero infinite-viewer direction): no specular;
 /// - `L = −V`: no Blinn-Phong specular (see [`BlinnPhong`](crate::BlinnPhong));
 /// - overflow: each channel saturates at `f32::MAX`.
