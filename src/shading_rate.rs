@@ -783,13 +783,13 @@ fn finish(f: Jet, r2: f32, s: f32) -> f32 {
 /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Viewer};
 ///
 /// let sun = DirectionalLight::try_new(Vec3::new(0.0, 0.0, 1.0), LightColors::try_from_strengths(Vec3::ONE, 0.0, 0.8, 0.5)?)?;
-/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::At(Vec3::new(0.0, 0.0, 10.0)) };
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
 /// let material = Material::try_from_color(Vec3::ONE, 32.0)?;
 /// let p = [Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.1, 0.0, 1.0), Vec3::new(0.0, 0.1, 1.0)];
-/// // A flat triangle: the same normal everywhere, and a far light and eye: nearly exact.
+/// // A flat triangle, a directional light and a distant viewer: N, L, V constant, so exact.
 /// let flat = phong::gouraud_error_bound(Phong::default(), &material, &scene, p, [Vec3::Z; 3]);
 /// assert!(flat < 1e-3);
-/// // The same triangle on a sphere of radius 0.1 (normals spread by 45°) under its highlight.
+/// // The same triangle with normals spread by 45°, as on a very coarse sphere, under the highlight.
 /// let curved = [Vec3::Z, Vec3::new(1.0, 0.0, 1.0).normalize(), Vec3::new(0.0, 1.0, 1.0).normalize()];
 /// assert!(phong::gouraud_error_bound(Phong::default(), &material, &scene, p, curved) > 0.1);
 /// # Ok::<(), phong::PhongError>(())
