@@ -59,3 +59,13 @@ fn the_matrix_covers_every_failure_mode_of_the_issue() {
         );
     }
 }
+
+#[test]
+fn docs_stability_md_is_current() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/stability.md");
+    let on_disk = std::fs::read_to_string(path).expect("docs/stability.md exists");
+    assert!(
+        on_disk == stability_cases::markdown(),
+        "docs/stability.md is stale: run `cargo run --release --example accuracy`"
+    );
+}
