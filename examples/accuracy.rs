@@ -492,6 +492,38 @@ fn findings_section(o: &mut String) {
         g(got as f64),
         g(want)
     );
+    // The same through `shade`: a sun on the horizon, a floor, a viewer low on the other side.
+    let sun = phong::DirectionalLight::try_new(
+        l,
+        phong::LightColors::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE).unwrap(),
+    )
+    .unwrap();
+    let mat = phong::Material::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE, 32.0).unwrap();
+    let model = phong::Model::BlinnPhong(BlinnPhong::default());
+    let scene = phong::Scene {
+        lights: &[sun],
+        ambient: Vec3::ZERO,
+        viewer: phong::Viewer::Infinite(v),
+    };
+    let got = phong::shade(&model, &mat, &scene, Vec3::ZERO, n).specular.x;
+    let want = reference::shade(
+        &model,
+        &mat,
+        &[phong::Light::Directional(sun)],
+        Vec3::ZERO,
+        scene.viewer,
+        Vec3::ZERO,
+        n,
+    )
+    .specular
+    .x;
+    let _ = writeln!(
+        o,
+        "| … so `shade` loses the glint of a low sun on a floor | the same L as a directional \
+         light, viewer at infinity along V, Ks = Ls = 1 | {} | {} |",
+        g(got as f64),
+        g(want)
+    );
     let n = Vec3::new(-0.158_832_65, -0.409_487_78, 0.898_382_96);
     let l = Vec3::new(-0.988_853_8, -0.000_211_545_51, 0.148_889_68);
     let v = Vec3::new(0.988_897, -0.000_123_234_2, -0.148_602_28);
