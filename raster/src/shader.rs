@@ -91,20 +91,29 @@ impl<'a> PhongShader<'a> {
     }
 
     /// Turns on light culling: light `i` is skipped beyond the distance where its attenuation
-    /// falls below `threshold / cᵢ`, `cᵢ` its brightest colour channel times the material's, so a
-    /// skipped light changes no channel by more than `threshold`. Directional lights are never
-    /// skipped.
+    /// falls below `threshold / cᵢ`, `cᵢ` the most the light can add to a channel at attenuation 1
+    /// (its colours times the material's, with the largest lobe values), so a skipped light
+    /// changes no channel by more than `threshold`. Directional lights are never skipped.
+    /// Texture maps are assumed to stay within the material's colours.
     #[must_use]
     pub fn with_culling(mut self, threshold: f32) -> Self {
         let m = &self.material;
         let k = m.ambient().max(m.diffuse()).max(m.specular()).max_element();
+        // Energy-normalised specular lobes can exceed 1.
+        let s = m.shininess();
+        let lobe = match self.model {
+            Model::Phong(p) => p.normalization.phong_factor(s),
+            Model::BlinnPhong(b) => b.normalization.blinn_factor(s),
+            Model::Lambert(_) => 0.0,
+        }
+        .max(1.0);
         self.cull = self
             .scene
             .lights
             .iter()
             .map(|l| {
                 let c = l.colors();
-                let bright = c.ambient() + c.diffuse() + c.specular();
+                let bright = c.ambient() + c.diffuse() + c.specular() * lobe;
                 let t = threshold / (bright.max_element() * k).max(f32::MIN_POSITIVE);
                 match l {
                     Light::Directional(_) => f32::INFINITY,
