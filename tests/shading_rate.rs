@@ -231,3 +231,70 @@ fn a_tolerance_that_is_nan_or_negative_is_never_met() {
         "no lights: exact"
     );
 }
+
+#[test]
+fn degenerate_triangles_still_get_a_finite_bound_that_holds() {
+    let point = |p: Vec3| -> Light {
+        PointLight::try_new(
+            p,
+            Attenuation::polynomial(1.0, 0.09, 0.032),
+            LightColors::try_from_strengths(Vec3::ONE, 0.1, 0.8, 0.5).unwrap(),
+        )
+        .unwrap()
+        .into()
+    };
+    let m = Material::try_from_color(Vec3::ONE, 16.0).unwrap();
+    let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    let flat = [Vec3::Z; 3];
+    let cases: [(&str, [Vec3; 3], [Vec3; 3], Light, Viewer); 5] = [
+        (
+            "collinear vertices",
+            [Vec3::ZERO, Vec3::X, 2.0 * Vec3::X],
+            [Vec3::Z, Vec3::Y, Vec3::Z],
+            point(Vec3::new(0.0, 1.0, 1.0)),
+            Viewer::At(Vec3::new(0.0, 0.0, 3.0)),
+        ),
+        (
+            "normals that cancel",
+            p,
+            [Vec3::Z, -Vec3::Z, Vec3::X],
+            point(Vec3::new(0.3, 0.3, 1.0)),
+            Viewer::At(Vec3::new(0.0, 0.0, 3.0)),
+        ),
+        (
+            "light on the triangle",
+            p,
+            flat,
+            point(Vec3::new(0.25, 0.25, 0.0)),
+            Viewer::At(Vec3::new(0.0, 0.0, 3.0)),
+        ),
+        (
+            "eye on the triangle",
+            p,
+            flat,
+            point(Vec3::new(0.0, 0.0, 2.0)),
+            Viewer::At(Vec3::new(0.25, 0.25, 0.0)),
+        ),
+        (
+            "zero infinite viewer",
+            p,
+            flat,
+            point(Vec3::new(0.0, 0.0, 2.0)),
+            Viewer::Infinite(Vec3::ZERO),
+        ),
+    ];
+    for (name, p, n, light, viewer) in cases {
+        let lights = [light];
+        let scene = Scene {
+            lights: &lights,
+            ambient: Vec3::ZERO,
+            viewer,
+        };
+        for model in [Model::from(Phong::default()), BlinnPhong::default().into()] {
+            let bound = phong::gouraud_error_bound(model, &m, &scene, p, n);
+            let worst = measured_worst(&model, &m, &scene, p, n);
+            assert!(bound.is_finite() && bound >= 0.0, "{name}: bound {bound}");
+            assert!(worst <= bound, "{name}: measured {worst} > bound {bound}");
+        }
+    }
+}
