@@ -232,6 +232,9 @@ fn a_tolerance_that_is_nan_or_negative_is_never_met() {
     );
 }
 
+/// A named triangle, its normals, a light and a viewer.
+type Case = (&'static str, [Vec3; 3], [Vec3; 3], Light, Viewer);
+
 #[test]
 fn degenerate_triangles_still_get_a_finite_bound_that_holds() {
     let point = |p: Vec3| -> Light {
@@ -246,7 +249,7 @@ fn degenerate_triangles_still_get_a_finite_bound_that_holds() {
     let m = Material::try_from_color(Vec3::ONE, 16.0).unwrap();
     let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
     let flat = [Vec3::Z; 3];
-    let cases: [(&str, [Vec3; 3], [Vec3; 3], Light, Viewer); 5] = [
+    let cases: [Case; 5] = [
         (
             "collinear vertices",
             [Vec3::ZERO, Vec3::X, 2.0 * Vec3::X],
