@@ -862,7 +862,7 @@ fn planks(uv: Vec2) -> (Vec3, Vec3) {
     let seam = (v.fract() < 0.04) || ((along * 0.5).fract() < 0.02);
     let wood = Vec3::new(0.45, 0.28, 0.13) * (0.75 + 0.25 * grain);
     let (fu, fv) = (u.fract(), v.fract());
-    let inlay = (fu - 0.5).abs() < 0.12 && (fv - 0.5).abs() < 0.12;
+    let inlay = (fu - 0.5).abs() < 0.2 && (fv - 0.5).abs() < 0.2;
     if inlay {
         (Vec3::new(0.35, 0.25, 0.08), Vec3::new(1.0, 0.85, 0.5))
     } else if seam {
@@ -873,7 +873,15 @@ fn planks(uv: Vec2) -> (Vec3, Vec3) {
 }
 
 fn textured(opts: &Options, g: &mut Gallery) {
-    let (camera, light) = floor_scene();
+    let (camera, _) = floor_scene();
+    // A brighter specular light than the floor scene's, so the brass shines and the wood does not.
+    let light = PointLight::try_new(
+        Vec3::new(0.3, 0.6, -2.0),
+        Attenuation::polynomial(1.0, 0.09, 0.032),
+        colours(0.05, 0.8, 1.0),
+    )
+    .expect("valid light")
+    .into();
     let floor = Mesh::plane(3.0, 8);
     let place = Mat4::from_translation(Vec3::new(0.0, -0.5, 0.0));
     let lights = [light];
