@@ -324,3 +324,57 @@ fn at_a_grazing_angle_blinn_phong_stretches_and_phong_stays_round() {
         "Phong's highlight should be roughly round: {phong}"
     );
 }
+
+#[test]
+fn light_culling_skips_far_lights_and_changes_each_pixel_by_less_than_its_threshold() {
+    let camera = Camera::look_at(Vec3::new(0.0, 8.0, 8.0), Vec3::ZERO);
+    let floor = Mesh::plane(6.0, 8);
+    let lights: Vec<Light> = (0..9)
+        .map(|k| {
+            let p = Vec3::new(
+                -4.0 + 4.0 * (k % 3) as f32,
+                0.5,
+                -4.0 + 4.0 * (k / 3) as f32,
+            );
+            let att = if k % 2 == 0 {
+                Attenuation::polynomial(1.0, 0.7, 1.8)
+            } else {
+                Attenuation::try_frostbite(2.5).unwrap()
+            };
+            PointLight::try_new(p, att, colours(0.05, 0.8, 0.5))
+                .unwrap()
+                .into()
+        })
+        .collect();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(camera.eye),
+    };
+    let m = Material::try_from_color(Vec3::splat(0.9), 16.0).unwrap();
+    let threshold = 0.5 / 255.0;
+    for model in [
+        Model::from(Phong::default()),
+        Model::from(BlinnPhong {
+            normalization: phong::Normalization::Energy,
+            ..BlinnPhong::default()
+        }),
+    ] {
+        let full = PhongShader::new(model, m, scene);
+        let culled = PhongShader::new(model, m, scene).with_culling(threshold);
+        let a = render(48, &camera, &floor, &full, ShadingMode::PerPixel);
+        let b = render(48, &camera, &floor, &culled, ShadingMode::PerPixel);
+        let skipped = culled.skipped.get();
+        assert!(
+            skipped > culled.evaluations.get() / 4,
+            "{model:?}: only {skipped} of {} skipped",
+            skipped + culled.evaluations.get()
+        );
+        // Each skipped light is below the threshold at that pixel.
+        let err = a.max_difference(&b);
+        assert!(
+            err <= threshold * lights.len() as f32,
+            "{model:?}: culling changed a pixel by {err}"
+        );
+    }
+}
