@@ -85,6 +85,7 @@ compile_error!(
 );
 
 mod attenuation;
+mod batch;
 mod blinn_phong;
 mod color;
 mod error;
@@ -112,6 +113,10 @@ mod triangle;
 mod vertex_normals;
 
 pub use attenuation::Attenuation;
+pub use batch::{
+    BatchLight, BatchModel, Level, SoaRgb, SoaVec3, UnsupportedLevel, shade_batch,
+    shade_batch_with_level,
+};
 pub use blinn_phong::BlinnPhong;
 pub use color::{
     gamma_decode, gamma_encode, linear_to_srgb8, quantize_u8, saturate, srgb_decode, srgb_encode,

@@ -1,0 +1,201 @@
+//! Shading many points at once from structure-of-arrays slices, at SIMD speed.
+//!
+//! [`shade_batch`] computes, for every point `i`, the same colour as
+//!
+//! ```text
+//! shade(model, material, scene, (px[i], py[i], pz[i]), (nx[i], ny[i], nz[i])).total()
+//! ```
+//!
+//! 16 points at a time, with the instruction set chosen at run time (with `std`: AVX-512, AVX2 +
+//! FMA or SSE2 through `is_x86_feature_detected!`) or at compile time (without `std`: the build's
+//! target features). [`shade_batch_with_level`] forces a [`Level`], for tests and measurements.
+//!
+//! ## What runs in the vector kernel
+//!
+//! - models: [`Lambert`](crate::Lambert), [`Phong`](crate::Phong),
+//!   [`BlinnPhong`](crate::BlinnPhong) and [`Model`](crate::Model), every
+//!   [`SpecularGate`](crate::SpecularGate), [`Normalization`](crate::Normalization) and
+//!   [`PowStrategy`](crate::PowStrategy) (`Exact` calls `powf` per lane and so does not vectorise;
+//!   `Auto` picks [`PowStrategy::cheapest_for_8bit`](crate::PowStrategy::cheapest_for_8bit));
+//! - lights: [`DirectionalLight`](crate::DirectionalLight) and
+//!   [`PointLight`](crate::PointLight) with [`Attenuation::None`](crate::Attenuation::None) or
+//!   [`Attenuation::Polynomial`](crate::Attenuation::Polynomial), any number, also through
+//!   [`Light`](crate::Light);
+//! - both [`Viewer`](crate::Viewer)s.
+//!
+//! A scene with any other light (spot lights, other attenuation forms) is shaded point by point
+//! by [`shade`](crate::shade): the same answer at scalar speed.
+//!
+//! ## Accuracy
+//!
+//! The kernel evaluates the same equation with the cosines formed from unnormalised vectors and
+//! approximate inverse norms (error per [`Level`]'s table), so each channel agrees with
+//! [`shade`](crate::shade) to a few `f32` ulps of the terms it sums, plus the pow strategy's error.
+//! Degenerate points (zero normal, viewer or light at the point, coordinates so large that a
+//! squared norm leaves `[1e-30, 1e30]`) are shaded by [`shade`](crate::shade) itself, so their
+//! documented results hold exactly. From finite input no NaN is produced.
+
+#[cfg(target_arch = "x86_64")]
+mod avx512;
+mod dispatch;
+mod kernel;
+mod level;
+mod prepare;
+mod soa;
+#[cfg(target_arch = "x86_64")]
+mod x86;
+
+pub use level::{Level, UnsupportedLevel};
+pub use prepare::{BatchLight, BatchModel};
+pub use soa::{SoaRgb, SoaVec3};
+
+use crate::material::Material;
+use crate::shade::Scene;
+
+/// Shades every point of a structure-of-arrays batch: `out[i] = shade(…, p[i], n[i]).total()`.
+///
+/// ```text
+/// I = Ke + Ka⊙(Ia + Σ f·La) + Σ f · ( Kd⊙Ld · diffuse(N·L) + Ks⊙Ls · gate(N·L) · lobe^s )
+/// ```
+///
+/// **Domain:** any finite positions and normals (normals need not be unit; they are normalised per
+/// point); model, material and scene as for [`shade`](crate::shade). Runs at the best
+/// [`Level::detect`] finds.
+///
+/// **Returns** the number of points shaded: the length of the shortest of the nine slices (debug
+/// builds assert they are equal). Outputs past it are untouched.
+///
+/// **Degenerate input:** as [`shade`](crate::shade): a zero normal gives ambient + emission only,
+/// a light at the point adds ambient only, a viewer at the point gives no specular, `L = −V` gives
+/// no Blinn-Phong specular; no NaN from finite input. **Error** against [`shade`](crate::shade):
+/// see the module docs.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{Attenuation, BlinnPhong, LightColors, Material, PointLight, PowStrategy, Scene};
+/// use phong::{SoaRgb, SoaVec3, Viewer};
+///
+/// let light = PointLight::try_new(
+///     Vec3::new(0.0, 2.0, 2.0),
+///     Attenuation::try_polynomial(1.0, 0.09, 0.032)?,
+///     LightColors::try_from_strengths(Vec3::ONE, 0.1, 1.0, 0.5)?,
+/// )?;
+/// let scene = Scene { lights: &[light], ambient: Vec3::ZERO, viewer: Viewer::At(Vec3::Z * 3.0) };
+/// let material = Material::try_from_color(Vec3::new(1.0, 0.5, 0.31), 32.0)?;
+/// let model = BlinnPhong { pow: PowStrategy::Auto, ..BlinnPhong::default() };
+///
+/// let (px, py, pz) = (vec![0.0; 100], vec![0.0; 100], vec![0.0; 100]);
+/// let (nx, ny, nz) = (vec![0.0; 100], vec![0.0; 100], vec![1.0; 100]);
+/// let (mut r, mut g, mut b) = (vec![0.0; 100], vec![0.0; 100], vec![0.0; 100]);
+/// let n = phong::shade_batch(
+///     &model,
+///     &material,
+///     &scene,
+///     SoaVec3::new(&px, &py, &pz),
+///     SoaVec3::new(&nx, &ny, &nz),
+///     SoaRgb::new(&mut r, &mut g, &mut b),
+/// );
+/// assert_eq!(n, 100);
+/// let one = phong::shade(&model, &material, &scene, Vec3::ZERO, Vec3::Z).total();
+/// assert!((r[7] - one.x).abs() < 1e-5);
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub fn shade_batch<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    run(
+        Level::detect(),
+        model,
+        material,
+        scene,
+        positions,
+        normals,
+        out,
+    )
+}
+
+/// [`shade_batch`] at a chosen instruction-set [`Level`].
+///
+/// **Returns** the number of points shaded, or [`UnsupportedLevel`] (having written nothing) when
+/// this CPU or build cannot run `level`: asking for a missing instruction set is an error, never
+/// undefined behaviour. Results agree with [`shade_batch`] at every level to the accuracy in
+/// [`Level`]'s table.
+///
+/// ```
+/// use phong::Level;
+/// assert!(Level::Portable.is_supported());
+/// assert!(Level::detect().is_supported());
+/// ```
+pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+) -> Result<usize, UnsupportedLevel> {
+    if !level.is_supported() {
+        return Err(UnsupportedLevel(level));
+    }
+    Ok(run(level, model, material, scene, positions, normals, out))
+}
+
+fn run<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    debug_assert!(
+        positions.x.len() == positions.y.len()
+            && positions.x.len() == positions.z.len()
+            && normals.x.len() == positions.x.len()
+            && normals.y.len() == positions.x.len()
+            && normals.z.len() == positions.x.len()
+            && out.r.len() == positions.x.len()
+            && out.g.len() == positions.x.len()
+            && out.b.len() == positions.x.len(),
+        "shade_batch: the nine slices must have the same length"
+    );
+    if scene.lights.iter().all(|l| l.lane_light().is_some()) {
+        let k = kernel::Setup::new(model, material, scene);
+        dispatch::run_level(level, &k, positions, normals, out)
+    } else {
+        scalar(model, material, scene, positions, normals, out)
+    }
+}
+
+/// Point by point with [`shade`](crate::shade), for scenes the kernel does not handle.
+fn scalar<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    let n = pos.len().min(nor.len()).min(out.len());
+    for i in 0..n {
+        let c = crate::shade(
+            model,
+            material,
+            scene,
+            glam::Vec3::new(pos.x[i], pos.y[i], pos.z[i]),
+            glam::Vec3::new(nor.x[i], nor.y[i], nor.z[i]),
+        )
+        .total();
+        out.r[i] = c.x;
+        out.g[i] = c.y;
+        out.b[i] = c.z;
+    }
+    n
+}

@@ -1,0 +1,59 @@
+//! The one place with `unsafe`: calling a `#[target_feature]` kernel after checking the CPU.
+
+#![allow(unsafe_code)]
+
+use super::kernel::{Setup, run};
+use super::level::Level;
+use super::prepare::{BatchLight, BatchModel};
+use super::soa::{SoaRgb, SoaVec3};
+
+/// Runs the kernel compiled for `level`. The caller has checked `level.is_supported()`; a level
+/// that is not supported (or does not exist on this architecture) runs the portable kernel.
+pub(super) fn run_level<M: BatchModel, L: BatchLight>(
+    level: Level,
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use super::{avx512, x86};
+        match level {
+            Level::Avx512 if level.is_supported() => {
+                // SAFETY: `is_supported` checked AVX-512F, AVX-512VL, AVX2 and FMA (at run time
+                // with `std`, in the build's target features without), which is every feature
+                // `avx512::avx512` enables.
+                return unsafe { avx512::avx512(k, pos, nor, out) };
+            }
+            Level::Avx2 if level.is_supported() => {
+                // SAFETY: `is_supported` checked AVX2 and FMA, the features `x86::avx2` enables.
+                return unsafe { x86::avx2(k, pos, nor, out) };
+            }
+            Level::Sse2 => {
+                // SAFETY: SSE2 is part of the x86_64 baseline: every x86_64 CPU has it.
+                return unsafe { x86::sse2(k, pos, nor, out) };
+            }
+            _ => {}
+        }
+    }
+    let _ = level;
+    portable(k, pos, nor, out)
+}
+
+/// The portable kernel: an exact `1 / sqrt(x)`.
+fn portable<M: BatchModel, L: BatchLight>(
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    let rsqrt = |x: super::kernel::Lanes| {
+        let mut r = x;
+        for v in &mut r {
+            *v = 1.0 / crate::math::sqrt(*v);
+        }
+        r
+    };
+    run(k, pos, nor, out, rsqrt)
+}

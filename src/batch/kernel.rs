@@ -1,0 +1,425 @@
+//! The batch kernel: one source, 16 points at a time, compiled once per instruction-set level.
+//!
+//! Every quantity is a `[f32; 16]` and every operation a loop over the 16 lanes with no
+//! cross-lane dependency, so LLVM turns each into one AVX-512 instruction (or two AVX2, or four
+//! SSE2 ones). Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:
+//!
+//! ```text
+//! N = n·rsqrt(n·n),  V̂ = V·rsqrt(V·V),  L̂ = L·rsqrt(L·L),  d = (L·L)·rsqrt(L·L)
+//! f     = 1 / max(c + d(l + q d), MIN_DENOMINATOR)
+//! Phong: R·V = 2(N·L̂)(N·V̂) − L̂·V̂                      (no reflect vector)
+//! Blinn: (N·H)² = max(N·L̂ + N·V̂, 0)² / (2 + 2 L̂·V̂)    (no halfway vector, no sqrt)
+//! ```
+//!
+//! The inverse square root is the one level-specific operation (passed in as `rsqrt`). Points the
+//! fast path cannot represent (a squared norm outside `[1e-30, 1e30]`: a zero or huge normal, the
+//! viewer or a light at the point, huge coordinates) are flagged and shaded again by the scalar
+//! [`shade`](crate::shade), so the batch has its degenerate-case results exactly.
+
+use glam::Vec3;
+
+use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
+use super::soa::{SoaRgb, SoaVec3};
+use crate::attenuation::Attenuation;
+use crate::gate::SpecularGate;
+use crate::material::Material;
+use crate::math;
+use crate::pow::{Poly, PowPlan, lobe_pow, poly_pow};
+use crate::shade::{Scene, Viewer};
+
+/// Lanes per step.
+pub(crate) const W: usize = 16;
+/// One value per lane.
+pub(crate) type Lanes = [f32; W];
+
+/// Squared norms in this range take the fast path (the same range `normalize_or_zero` handles
+/// directly).
+const LO: f32 = 1.0e-30;
+const HI: f32 = 1.0e30;
+
+/// `[e(0), e(1), …, e(15)]`.
+macro_rules! lanes {
+    (|$i:ident| $e:expr) => {{
+        let mut r = [0.0f32; W];
+        for $i in 0..W {
+            r[$i] = $e;
+        }
+        r
+    }};
+}
+
+/// The viewer as the kernel sees it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum ViewK {
+    At(Vec3),
+    /// A unit direction (specular is off for a zero one).
+    Infinite(Vec3),
+}
+
+/// A light's kernel form with its colours already multiplied by the material's and the model's
+/// scale factors.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PreparedLight {
+    pub(crate) lane: LaneLight,
+    /// `Ka ⊙ La`.
+    pub(crate) ka: Vec3,
+    /// `Kd ⊙ Ld · diffuse scale`.
+    pub(crate) kd: Vec3,
+    /// `Ks ⊙ Ls · specular scale`.
+    pub(crate) ks: Vec3,
+}
+
+/// Lights prepared once per call (more are prepared per chunk).
+pub(crate) const PREPARED: usize = 8;
+
+/// The kernel form of `light` (an ambient-only light for a form the kernel does not handle, which
+/// callers rule out first).
+#[inline]
+pub(crate) fn prepare_light<L: BatchLight>(
+    light: &L,
+    material: &Material,
+    lm: &LaneModel,
+) -> PreparedLight {
+    let sat = Vec3::splat(math::MAX);
+    let colors = light.colors();
+    PreparedLight {
+        lane: light.lane_light().unwrap_or(LaneLight::AmbientOnly),
+        ka: (colors.ambient() * material.ambient()).min(sat),
+        kd: (colors.diffuse() * material.diffuse()).min(sat) * lm.diffuse_scale,
+        ks: (colors.specular() * material.specular()).min(sat) * lm.specular_scale,
+    }
+}
+
+/// Everything constant over one call.
+pub(crate) struct Setup<'a, M, L> {
+    pub(crate) model: &'a M,
+    pub(crate) material: &'a Material,
+    pub(crate) scene: &'a Scene<'a, L>,
+    pub(crate) lm: LaneModel,
+    pub(crate) plan: PowPlan,
+    /// Bases below this give a lobe below 2^-100; they are flushed to 0 before squaring so no
+    /// subnormal is ever produced.
+    pub(crate) flush: f32,
+    pub(crate) view: ViewK,
+    pub(crate) specular_on: bool,
+    /// `Ke + Ka ⊙ Ia`.
+    pub(crate) base: Vec3,
+    /// The first lights, prepared; all of them when `all_prepared`.
+    pub(crate) prepared: [PreparedLight; PREPARED],
+    pub(crate) all_prepared: bool,
+}
+
+impl<M, L: BatchLight> Setup<'_, M, L> {
+    /// Light `j`, prepared.
+    #[inline(always)]
+    pub(crate) fn light(&self, j: usize) -> PreparedLight {
+        if self.all_prepared {
+            self.prepared[j % PREPARED]
+        } else {
+            prepare_light(&self.scene.lights[j], self.material, &self.lm)
+        }
+    }
+}
+
+impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
+    pub(crate) fn new(model: &'a M, material: &'a Material, scene: &'a Scene<'a, L>) -> Self {
+        let lm = model.lane_model(material.shininess());
+        let plan = lm.pow.plan(lm.exponent);
+        let n = match plan {
+            PowPlan::Squaring { n } | PowPlan::Split { n, .. } => n,
+            _ => 0,
+        };
+        let flush = if n > 0 {
+            math::powf(2.0, -100.0 / n as f32)
+        } else {
+            0.0
+        };
+        let view = match scene.viewer {
+            Viewer::At(eye) => ViewK::At(eye),
+            Viewer::Infinite(d) => ViewK::Infinite(crate::normalize_or_zero(d)),
+        };
+        let specular_on =
+            lm.lobe != Lobe::None && !matches!(view, ViewK::Infinite(v) if v == Vec3::ZERO);
+        let sat = Vec3::splat(math::MAX);
+        let ia = crate::light::sanitize_colour(scene.ambient);
+        let base = (material.emission() + (ia * material.ambient()).min(sat)).min(sat);
+        let mut prepared = [PreparedLight {
+            lane: LaneLight::AmbientOnly,
+            ka: Vec3::ZERO,
+            kd: Vec3::ZERO,
+            ks: Vec3::ZERO,
+        }; PREPARED];
+        for (slot, light) in prepared.iter_mut().zip(scene.lights) {
+            *slot = prepare_light(light, material, &lm);
+        }
+        Setup {
+            prepared,
+            all_prepared: scene.lights.len() <= PREPARED,
+            model,
+            material,
+            scene,
+            lm,
+            plan,
+            flush,
+            view,
+            specular_on,
+            base,
+        }
+    }
+}
+
+#[inline(always)]
+fn load(s: &[f32], i: usize) -> Lanes {
+    let mut a = [0.0f32; W];
+    a.copy_from_slice(&s[i..i + W]);
+    a
+}
+
+#[inline(always)]
+pub(crate) fn load_tail(s: &[f32], i: usize, count: usize) -> Lanes {
+    let mut a = [0.0f32; W];
+    a[..count].copy_from_slice(&s[i..i + count]);
+    a
+}
+
+/// `x^n` per lane by repeated squaring, bases below `flush` first set to 0.
+#[inline(always)]
+fn squaring_lanes(x: &Lanes, flush: f32, n: u32) -> Lanes {
+    let mut base = lanes!(|i| if x[i] < flush { 0.0 } else { x[i] });
+    let mut acc = [1.0f32; W];
+    let mut e = n;
+    while e > 0 {
+        if e & 1 == 1 {
+            acc = lanes!(|i| acc[i] * base[i]);
+        }
+        base = lanes!(|i| base[i] * base[i]);
+        e >>= 1;
+    }
+    acc
+}
+
+/// `exp2(s·log2 x)` per lane.
+#[inline(always)]
+fn poly_lanes(p: Poly, x: &Lanes, s: f32) -> Lanes {
+    match p {
+        Poly::P3 => lanes!(|i| poly_pow(Poly::P3, x[i], s)),
+        Poly::P5 => lanes!(|i| poly_pow(Poly::P5, x[i], s)),
+        Poly::P7 => lanes!(|i| poly_pow(Poly::P7, x[i], s)),
+    }
+}
+
+/// `x^s` per lane for bases in `[0, 1]`; 0 for `x ≤ 0`.
+#[inline(always)]
+fn pow_lanes(plan: PowPlan, flush: f32, x: Lanes) -> Lanes {
+    let r = match plan {
+        PowPlan::Exact { s } => lanes!(|i| lobe_pow(x[i], s)),
+        PowPlan::Squaring { n } => squaring_lanes(&x, flush, n),
+        PowPlan::Poly { s, poly } => poly_lanes(poly, &x, s),
+        PowPlan::Split { n, frac, poly } => {
+            let a = squaring_lanes(&x, flush, n);
+            let b = poly_lanes(poly, &x, frac);
+            lanes!(|i| a[i] * b[i])
+        }
+    };
+    lanes!(|i| if x[i] > 0.0 { r[i] } else { 0.0 })
+}
+
+/// Shades 16 points. Returns the colours and which lanes need the scalar path.
+#[inline(always)]
+fn chunk<M, L, R>(k: &Setup<'_, M, L>, p: &[Lanes; 3], n: &[Lanes; 3], rsqrt: &R) -> [Lanes; 4]
+where
+    M: BatchModel,
+    L: BatchLight,
+    R: Fn(Lanes) -> Lanes,
+{
+    let [px, py, pz] = p;
+    let [nx, ny, nz] = n;
+    let nn = lanes!(|i| nx[i] * nx[i] + ny[i] * ny[i] + nz[i] * nz[i]);
+    // 1.0 marks a lane for the scalar path (an f32 mask keeps every lane loop vectorisable).
+    let mut bad = lanes!(|i| if nn[i] >= LO && nn[i] <= HI { 0.0 } else { 1.0 });
+    let inv_n = rsqrt(nn);
+    let ux = lanes!(|i| nx[i] * inv_n[i]);
+    let uy = lanes!(|i| ny[i] * inv_n[i]);
+    let uz = lanes!(|i| nz[i] * inv_n[i]);
+
+    let (vx, vy, vz) = match k.view {
+        ViewK::At(e) => {
+            let dx = lanes!(|i| e.x - px[i]);
+            let dy = lanes!(|i| e.y - py[i]);
+            let dz = lanes!(|i| e.z - pz[i]);
+            let vv = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+            bad = lanes!(|i| if vv[i] >= LO && vv[i] <= HI {
+                bad[i]
+            } else {
+                1.0
+            });
+            let inv = rsqrt(vv);
+            (
+                lanes!(|i| dx[i] * inv[i]),
+                lanes!(|i| dy[i] * inv[i]),
+                lanes!(|i| dz[i] * inv[i]),
+            )
+        }
+        ViewK::Infinite(v) => ([v.x; W], [v.y; W], [v.z; W]),
+    };
+    let nv = lanes!(|i| ux[i] * vx[i] + uy[i] * vy[i] + uz[i] * vz[i]);
+
+    let mut acc_r = [k.base.x; W];
+    let mut acc_g = [k.base.y; W];
+    let mut acc_b = [k.base.z; W];
+    let lm = &k.lm;
+    for j in 0..k.scene.lights.len() {
+        let PreparedLight { lane, ka, kd, ks } = k.light(j);
+        let (lx, ly, lz, att) = match lane {
+            LaneLight::AmbientOnly => {
+                acc_r = lanes!(|i| acc_r[i] + ka.x);
+                acc_g = lanes!(|i| acc_g[i] + ka.y);
+                acc_b = lanes!(|i| acc_b[i] + ka.z);
+                continue;
+            }
+            LaneLight::Directional(d) => ([d.x; W], [d.y; W], [d.z; W], [1.0f32; W]),
+            LaneLight::Point {
+                position: q,
+                coefficients: [c0, c1, c2],
+            } => {
+                let dx = lanes!(|i| q.x - px[i]);
+                let dy = lanes!(|i| q.y - py[i]);
+                let dz = lanes!(|i| q.z - pz[i]);
+                let ll = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+                bad = lanes!(|i| if ll[i] >= LO && ll[i] <= HI {
+                    bad[i]
+                } else {
+                    1.0
+                });
+                let inv = rsqrt(ll);
+                let d = lanes!(|i| ll[i] * inv[i]);
+                let att = lanes!(
+                    |i| 1.0 / (c0 + d[i] * (c1 + c2 * d[i])).max(Attenuation::MIN_DENOMINATOR)
+                );
+                (
+                    lanes!(|i| dx[i] * inv[i]),
+                    lanes!(|i| dy[i] * inv[i]),
+                    lanes!(|i| dz[i] * inv[i]),
+                    att,
+                )
+            }
+        };
+        let nl = lanes!(|i| ux[i] * lx[i] + uy[i] * ly[i] + uz[i] * lz[i]);
+        let wd = lanes!(|i| att[i] * nl[i].max(0.0));
+        acc_r = lanes!(|i| acc_r[i] + att[i] * ka.x + wd[i] * kd.x);
+        acc_g = lanes!(|i| acc_g[i] + att[i] * ka.y + wd[i] * kd.y);
+        acc_b = lanes!(|i| acc_b[i] + att[i] * ka.z + wd[i] * kd.z);
+        if !k.specular_on {
+            continue;
+        }
+        let lv = lanes!(|i| lx[i] * vx[i] + ly[i] * vy[i] + lz[i] * vz[i]);
+        let base = match lm.lobe {
+            Lobe::Blinn => lanes!(|i| {
+                let s = (nl[i] + nv[i]).max(0.0);
+                let den = 2.0 + 2.0 * lv[i];
+                if den > 1e-12 {
+                    (s * s / den).min(1.0)
+                } else {
+                    0.0
+                }
+            }),
+            _ => lanes!(|i| (2.0 * nl[i] * nv[i] - lv[i]).clamp(-1.0, 1.0)),
+        };
+        let lobe = pow_lanes(k.plan, k.flush, base);
+        let ws = match lm.gate {
+            SpecularGate::Step => lanes!(|i| if nl[i] > 0.0 { att[i] * lobe[i] } else { 0.0 }),
+            SpecularGate::Cosine => lanes!(|i| att[i] * nl[i].max(0.0) * lobe[i]),
+            SpecularGate::None => lanes!(|i| att[i] * lobe[i]),
+        };
+        acc_r = lanes!(|i| acc_r[i] + ws[i] * ks.x);
+        acc_g = lanes!(|i| acc_g[i] + ws[i] * ks.y);
+        acc_b = lanes!(|i| acc_b[i] + ws[i] * ks.z);
+    }
+    [
+        lanes!(|i| acc_r[i].min(math::MAX)),
+        lanes!(|i| acc_g[i].min(math::MAX)),
+        lanes!(|i| acc_b[i].min(math::MAX)),
+        bad,
+    ]
+}
+
+/// Re-shades the flagged lanes with the scalar path.
+#[cold]
+#[inline(never)]
+pub(crate) fn fixup<M: BatchModel, L: BatchLight>(
+    k: &Setup<'_, M, L>,
+    p: [Lanes; 3],
+    n: [Lanes; 3],
+    mut out: [Lanes; 4],
+    count: usize,
+) -> [Lanes; 4] {
+    for i in 0..count {
+        if out[3][i] != 0.0 {
+            let c = crate::shade(
+                k.model,
+                k.material,
+                k.scene,
+                Vec3::new(p[0][i], p[1][i], p[2][i]),
+                Vec3::new(n[0][i], n[1][i], n[2][i]),
+            )
+            .total();
+            out[0][i] = c.x;
+            out[1][i] = c.y;
+            out[2][i] = c.z;
+        }
+    }
+    out
+}
+
+/// Shades the common prefix of all slices with the given inverse square root; returns its length.
+#[inline(always)]
+pub(crate) fn run<M, L, R>(
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+    rsqrt: R,
+) -> usize
+where
+    M: BatchModel,
+    L: BatchLight,
+    R: Fn(Lanes) -> Lanes,
+{
+    let len = pos.len().min(nor.len()).min(out.len());
+    let (px, py, pz) = (&pos.x[..len], &pos.y[..len], &pos.z[..len]);
+    let (nx, ny, nz) = (&nor.x[..len], &nor.y[..len], &nor.z[..len]);
+    let (r, g, b) = (&mut out.r[..len], &mut out.g[..len], &mut out.b[..len]);
+    let mut i = 0;
+    while i + W <= len {
+        let p = [load(px, i), load(py, i), load(pz, i)];
+        let n = [load(nx, i), load(ny, i), load(nz, i)];
+        let mut c = chunk(k, &p, &n, &rsqrt);
+        // An integer OR reduction (a float max would be a serial chain).
+        if c[3].iter().fold(0u32, |a, &b| a | b.to_bits()) != 0 {
+            c = fixup(k, p, n, c, W);
+        }
+        r[i..i + W].copy_from_slice(&c[0]);
+        g[i..i + W].copy_from_slice(&c[1]);
+        b[i..i + W].copy_from_slice(&c[2]);
+        i += W;
+    }
+    if i < len {
+        let count = len - i;
+        let p = [
+            load_tail(px, i, count),
+            load_tail(py, i, count),
+            load_tail(pz, i, count),
+        ];
+        let n = [
+            load_tail(nx, i, count),
+            load_tail(ny, i, count),
+            load_tail(nz, i, count),
+        ];
+        let c = chunk(k, &p, &n, &rsqrt);
+        let c = fixup(k, p, n, c, count);
+        r[i..].copy_from_slice(&c[0][..count]);
+        g[i..].copy_from_slice(&c[1][..count]);
+        b[i..].copy_from_slice(&c[2][..count]);
+    }
+    len
+}

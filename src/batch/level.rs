@@ -1,0 +1,128 @@
+//! Instruction-set levels the batch kernel is compiled for, and which of them the CPU runs.
+
+use core::fmt;
+
+/// An instruction-set level of the batch kernel.
+///
+/// Every level runs the same kernel source; they differ in the vector width LLVM uses and in how
+/// the three inverse norms `1/‖n‖`, `1/‖L‖`, `1/‖V‖` are computed:
+///
+/// | level | vectors | inverse norm | its relative error |
+/// |---|---|---|---|
+/// | `Portable` | whatever the build targets | `1 / sqrt(x)` | ≤ 1 ulp + 0.5 ulp |
+/// | `Sse2` (x86_64) | 4 × f32 | `rsqrtps` + one Newton step | ≤ 1.5·(1.5·2⁻¹²)² + rounding ≈ 3e-7 |
+/// | `Avx2` (AVX2 + FMA) | 8 × f32 | `vrsqrtps` + one Newton step | ≈ 3e-7, as `Sse2` |
+/// | `Avx512` (AVX-512F/VL + AVX2 + FMA) | 16 × f32 | `vrsqrt14ps` + one Newton step | ≤ 1.5·2⁻²⁸ + rounding ≈ 1.5e-7 |
+///
+/// (A Newton step `y' = y·(3 − x·y²)/2` turns a relative error `e` into about `1.5·e²`.)
+/// `Avx512` runs a kernel written with intrinsics and fused multiply-adds; the others run one
+/// portable kernel that LLVM vectorises for their instruction set. The batch tests compare every
+/// level with the scalar [`shade`](crate::shade); docs/performance.md has each level's speed and
+/// 8-bit accuracy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum Level {
+    /// Plain Rust, no intrinsics: runs on every target.
+    Portable,
+    /// x86_64's baseline SSE2 (every x86_64 CPU).
+    Sse2,
+    /// AVX2 with FMA.
+    Avx2,
+    /// AVX-512 F and VL, with AVX2 and FMA.
+    Avx512,
+}
+
+impl Level {
+    /// Every level, lowest first.
+    pub const ALL: [Level; 4] = [Level::Portable, Level::Sse2, Level::Avx2, Level::Avx512];
+
+    /// Whether this CPU (with `std`: detected at run time) or this build (without `std`: the
+    /// target features enabled at compile time) can run the level.
+    #[must_use]
+    pub fn is_supported(self) -> bool {
+        match self {
+            Level::Portable => true,
+            Level::Sse2 => cfg!(target_arch = "x86_64"),
+            Level::Avx2 => has_avx2(),
+            Level::Avx512 => has_avx512(),
+        }
+    }
+
+    /// The best level [`is_supported`](Self::is_supported): what [`shade_batch`](crate::shade_batch)
+    /// uses.
+    #[must_use]
+    pub fn detect() -> Level {
+        let mut best = Level::Portable;
+        for l in Level::ALL {
+            if l.is_supported() {
+                best = l;
+            }
+        }
+        best
+    }
+
+    /// Every level this machine supports, lowest first (for tests and benchmarks).
+    pub fn supported() -> impl Iterator<Item = Level> {
+        Level::ALL.into_iter().filter(|l| l.is_supported())
+    }
+
+    /// A short name: `"portable"`, `"sse2"`, `"avx2"`, `"avx512"`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Portable => "portable",
+            Level::Sse2 => "sse2",
+            Level::Avx2 => "avx2",
+            Level::Avx512 => "avx512",
+        }
+    }
+}
+
+impl fmt::Display for Level {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A requested [`Level`] that this CPU or build cannot run; returned by
+/// [`shade_batch_with_level`](crate::shade_batch_with_level) instead of running it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UnsupportedLevel(pub Level);
+
+impl fmt::Display for UnsupportedLevel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "batch level {} is not supported on this CPU or build",
+            self.0
+        )
+    }
+}
+
+impl core::error::Error for UnsupportedLevel {}
+
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+fn has_avx2() -> bool {
+    std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+}
+
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+fn has_avx512() -> bool {
+    has_avx2()
+        && std::is_x86_feature_detected!("avx512f")
+        && std::is_x86_feature_detected!("avx512vl")
+}
+
+#[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+fn has_avx2() -> bool {
+    cfg!(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))
+}
+
+#[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+fn has_avx512() -> bool {
+    has_avx2() && cfg!(all(target_feature = "avx512f", target_feature = "avx512vl"))
+}

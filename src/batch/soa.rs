@@ -1,0 +1,70 @@
+//! The structure-of-arrays views a batch reads and writes.
+
+/// Three parallel slices of coordinates: point `i` is `(x[i], y[i], z[i])`.
+///
+/// Used for positions (any finite coordinates) and normals (any finite vector; normalised per
+/// point, a zero normal meaning "no diffuse or specular"). Slices of different lengths are allowed:
+/// a batch shades the shortest common prefix of all its slices.
+#[derive(Clone, Copy, Debug)]
+pub struct SoaVec3<'a> {
+    /// The `x` coordinates.
+    pub x: &'a [f32],
+    /// The `y` coordinates.
+    pub y: &'a [f32],
+    /// The `z` coordinates.
+    pub z: &'a [f32],
+}
+
+impl<'a> SoaVec3<'a> {
+    /// The three slices as a view.
+    #[must_use]
+    pub fn new(x: &'a [f32], y: &'a [f32], z: &'a [f32]) -> Self {
+        SoaVec3 { x, y, z }
+    }
+
+    /// The length of the shortest slice.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.x.len().min(self.y.len()).min(self.z.len())
+    }
+
+    /// Whether the shortest slice is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Three parallel output slices of linear RGB: point `i`'s colour goes to `(r[i], g[i], b[i])`.
+///
+/// Each channel written is the [`Terms::total`](crate::Terms::total) of the point: finite, `≥ 0`,
+/// saturated at `f32::MAX`. Elements past the shaded prefix are left untouched.
+#[derive(Debug)]
+pub struct SoaRgb<'a> {
+    /// The red channel.
+    pub r: &'a mut [f32],
+    /// The green channel.
+    pub g: &'a mut [f32],
+    /// The blue channel.
+    pub b: &'a mut [f32],
+}
+
+impl<'a> SoaRgb<'a> {
+    /// The three slices as an output view.
+    #[must_use]
+    pub fn new(r: &'a mut [f32], g: &'a mut [f32], b: &'a mut [f32]) -> Self {
+        SoaRgb { r, g, b }
+    }
+
+    /// The length of the shortest slice.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.r.len().min(self.g.len()).min(self.b.len())
+    }
+
+    /// Whether the shortest slice is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
