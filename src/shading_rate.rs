@@ -20,7 +20,10 @@
 //! with `r` the radius of the triangle's smallest enclosing circle. Where `F` has a kink or a jump
 //! inside the triangle (a terminator, Phong's cut-off at `s < 2`, a step gate, a spot cone edge), the
 //! bound falls back to the width of `F`'s interval: `G` and `F` both lie in it. The result is the
-//! smaller of the two, plus a rounding allowance. The derivation with every constant is in
+//! smaller of the two, plus a rounding allowance, taken for the ambient, diffuse and specular parts
+//! of each light apart. A directional light's diffuse part has an exact form,
+//! `(Σ bᵢcᵢ)(1 − 1/‖Σ bᵢnᵢ‖)` plus a Jensen gap at the terminator, and gets the sharper bound
+//! `max(B(1/μ − 1), AB/(A+B))` from it. The derivation with every constant is in
 //! docs/derivations.md (section "Shading rate").
 
 use glam::Vec3;
@@ -544,6 +547,8 @@ struct Triangle {
     n: [Vec3; 3],
     /// Squared radius of the smallest enclosing circle.
     r2: f32,
+    /// `μ = min ‖Σ bᵢnᵢ‖` over the triangle.
+    mu: f32,
     normal: Option<NormalJet>,
 }
 
@@ -634,12 +639,23 @@ fn light_bound(
         Model::Phong(m) => (m.gate, m.normalization, true, false),
         Model::BlinnPhong(m) => (m.gate, m.normalization, true, true),
     };
-    let diffuse = if normalization.is_normalized() {
-        diffuse.scale(1.0 / core::f32::consts::PI)
+    let wd = if normalization.is_normalized() {
+        wd * (1.0 / core::f32::consts::PI)
     } else {
-        diffuse
+        wd
     };
-    let mut lobes = Jet::constant(wa).add(diffuse.scale(wd));
+    // The parts are bounded apart: the error of a sum is at most the sum of the errors, and
+    // min(width, Taylor) taken per part is never larger than taken for the sum.
+    let mut total = finish(factor.scale(wa), r2, 0.0);
+    let diffuse_jet = finish(factor.mul(diffuse.scale(wd)), r2, 0.0);
+    total += match light {
+        Light::Directional(_) => {
+            let c = [n[0].dot(l_at[0]), n[1].dot(l_at[1]), n[2].dot(l_at[2])];
+            let sharp = wd * directional_diffuse_error(c, tri.mu) + 32.0 * f32::EPSILON * wd;
+            sharp.min(diffuse_jet)
+        }
+        _ => diffuse_jet,
+    };
 
     let v_at = match viewer {
         Viewer::At(eye) => p.map(|q| normalize_or_zero(eye - q)),
@@ -703,9 +719,33 @@ fn light_bound(
                 SpecularGate::None => lobe,
             }
         };
-        lobes = lobes.add(specular.scale(ws));
+        total += finish(factor.mul(specular.scale(ws)), r2, s);
     }
-    finish(factor.mul(lobes), r2, s)
+    total
+}
+
+/// The exact Gouraud error of a directional light's diffuse lobe, bounded: with `L` constant,
+/// `m·L = Σ bᵢcᵢ` is affine in `b`, so with `a = m·L`
+///
+/// ```text
+/// G − F = Σ bᵢ max(cᵢ, 0) − max(a, 0)/‖m‖
+///       = [Σ bᵢ max(cᵢ, 0) − max(a, 0)]  +  max(a, 0)·(1 − 1/‖m‖)
+/// ```
+///
+/// The first bracket is the Jensen gap of `max(x, 0)` for `cᵢ ∈ [−A, B]`, in `[0, AB/(A+B)]`; the
+/// second is in `[−B(1/μ − 1), 0]`. Their sum is at most the larger of the two in magnitude.
+fn directional_diffuse_error(c: [f32; 3], mu: f32) -> f32 {
+    let b = c[0].max(c[1]).max(c[2]).max(0.0);
+    let a = (-c[0]).max(-c[1]).max(-c[2]).max(0.0);
+    if b == 0.0 {
+        return 0.0;
+    }
+    if !(mu > 1e-6) {
+        return 1.0;
+    }
+    let shrink = b * (1.0 / mu - 1.0);
+    let jensen = if a > 0.0 { a * b / (a + b) } else { 0.0 };
+    shrink.max(jensen).min(1.0)
 }
 
 /// The largest diffuse and specular lobes a model can produce at shininess `s`.
@@ -751,15 +791,18 @@ fn finish(f: Jet, r2: f32, s: f32) -> f32 {
 /// bound ≥ max over the triangle of | Σ bᵢ·I(Pᵢ, nᵢ) − I(Σ bᵢPᵢ, normalize(Σ bᵢnᵢ)) |
 ///        (each channel of the linear colour I = shade(…).total())
 ///
-/// per light:  min( width of I's interval ,  ½ · M₂ · r² ) + rounding
+/// per light and part:  min( width of the part's interval ,  ½ · M₂ · r² ) + rounding
+/// directional diffuse:  Kd·Ld · max( B·(1/μ − 1) , AB/(A+B) )  if smaller
 /// ```
 ///
 /// `r` is the radius of the triangle's smallest enclosing circle and `M₂` a bound on the second
 /// derivative of the light's contribution along any straight path in the triangle, built from the
 /// spread of the normals (`κ = ‖∂n/∂P‖`, `μ = min ‖Σ bᵢnᵢ‖`), the distances to the light and the
 /// viewer, the attenuation and spot factors and the lobe exponent; where the contribution has a kink
-/// or a jump inside the triangle only the interval width is used. Lights add their bounds; the
-/// scene's ambient and the emission are constant and add nothing. Derivation in
+/// or a jump inside the triangle only the interval width is used. For a directional light's
+/// diffuse part, `B` and `A` are the largest positive and negative vertex values of `N·L` and
+/// `μ = min ‖Σ bᵢnᵢ‖`. The parts (the light's ambient, diffuse and specular) and the lights add
+/// their bounds; the scene's ambient and the emission are constant and add nothing. Derivation in
 /// docs/derivations.md (section "Shading rate").
 ///
 /// **Domain:** `positions` finite; `normals` the vertex normals the renderer interpolates (they
@@ -812,6 +855,7 @@ where
         p: positions,
         n,
         r2: enclosing_radius_squared(positions),
+        mu: distance_to_triangle(Vec3::ZERO, n),
         normal: normal_jet(positions, n),
     };
     // The constant terms are interpolated exactly but for rounding: a few ulps of their size.
