@@ -301,3 +301,32 @@ fn degenerate_triangles_still_get_a_finite_bound_that_holds() {
         }
     }
 }
+
+#[test]
+fn a_directional_lights_diffuse_bound_is_sharp() {
+    // A triangle of a unit sphere about 18° across (as on a 320-face icosphere), lit at 30°.
+    let dir = |a: f32, b: f32| {
+        let (a, b) = (a.to_radians(), b.to_radians());
+        Vec3::new(a.sin() * b.cos(), b.sin(), a.cos() * b.cos())
+    };
+    let p = [dir(0.0, 0.0), dir(18.0, 0.0), dir(9.0, 15.6)];
+    let sun = DirectionalLight::try_new(
+        dir(30.0, 10.0),
+        LightColors::try_from_strengths(Vec3::ONE, 0.0, 0.8, 0.0).unwrap(),
+    )
+    .unwrap();
+    let lights = [Light::from(sun)];
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(0.0, 0.0, 4.0)),
+    };
+    let m = Material::try_from_color(Vec3::ONE, 32.0).unwrap();
+    let model = Model::from(Lambert::default());
+    let bound = phong::gouraud_error_bound(model, &m, &scene, p, p);
+    let worst = measured_worst(&model, &m, &scene, p, p);
+    assert!(
+        worst <= bound && bound <= 1.2 * worst,
+        "bound {bound} vs measured {worst}: should be within 20%"
+    );
+}
