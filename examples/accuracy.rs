@@ -378,11 +378,14 @@ fn halfway_section(o: &mut String) {
         "**Blinn-Phong's lobe with `L` and `V` both grazing from opposite sides.** `L` and `V` at \
          `ε` above the tangent plane, on opposite sides of `N` in one plane: then `H = N` exactly \
          and the true lobe is 1 for every `s` (this is the mirror configuration at grazing \
-         incidence). The crate's lobe comes from `(N·H)² = (N·L + N·V)² / (2 + 2 L·V)`, whose \
-         denominator is `4ε²`, below the `f32` resolution of `L·V ≈ −1` once `ε` is small. The \
-         vector form (`halfway`, then the power) keeps it. s = 32.\n\n",
+         incidence). The cosine form `(N·H)² = (N·L + N·V)² / (2 + 2 L·V)` \
+         (`Incidence::from_cosines`) has the denominator `4ε²`, below the `f32` resolution of \
+         `L·V ≈ −1` once `ε` is small, and loses the highlight. This measurement is why \
+         `Incidence::new` (which `shade` uses) computes `(N·H)²` from `L + V` and `‖L+V‖²` \
+         instead: it keeps full precision, like the vector form (`halfway`, then the power). \
+         s = 32.\n\n",
     );
-    o.push_str("| ε (rad) | reference | `BlinnPhong::specular` | vector form `lobe(N·halfway(L,V))` | naive `pow(dot(N, normalize(L+V)), s)` | `Phong::specular` (reference 1) |\n|---:|---:|---:|---:|---:|---:|\n");
+    o.push_str("| ε (rad) | reference | `BlinnPhong::specular` (`Incidence::new`) | cosine form (`Incidence::from_cosines`) | vector form `lobe(N·halfway(L,V))` | naive `pow(dot(N, normalize(L+V)), s)` | `Phong::specular` (reference 1) |\n|---:|---:|---:|---:|---:|---:|---:|\n");
     for k in 1..=6 {
         let eps = 10f64.powi(-k);
         let (n, l, v) = grazing_opposite(eps);
@@ -395,14 +398,19 @@ fn halfway_section(o: &mut String) {
             32.0,
         );
         let crate_ = BlinnPhong::default().specular(&g3, 32.0);
+        let cos_form = BlinnPhong::default().specular(
+            &Incidence::from_cosines(g3.n_dot_l, g3.n_dot_v, g3.l_dot_v),
+            32.0,
+        );
         let vector = phong::PowStrategy::Exact.lobe(n.dot(phong::halfway(l, v)), 32.0);
         let naive = n.dot((l + v).normalize()).max(0.0).powf(32.0);
         let ph = Phong::default().specular(&g3, 32.0);
         let _ = writeln!(
             o,
-            "| {eps:.0e} | {} | {} | {} | {} | {} |",
+            "| {eps:.0e} | {} | {} | {} | {} | {} | {} |",
             g(want),
             g(crate_ as f64),
+            g(cos_form as f64),
             g(vector as f64),
             g(naive as f64),
             g(ph as f64)
@@ -411,9 +419,10 @@ fn halfway_section(o: &mut String) {
     o.push('\n');
     o.push_str(
         "The same configuration rotated a little (V 1e-3 rad off the mirror direction) is in the \
-         lobe table above as the adversarial domain \"L, V nearly opposite\"; its large absolute \
-         error for `Incidence::n_dot_h_squared` and `BlinnPhong specular` is this effect. Phong's \
-         `R·V = 2(N·L)(N·V) − L·V` has no such cancellation (both terms are positive there).\n\n",
+         lobe table above as the adversarial domain \"L, V nearly opposite\"; before the fix its \
+         absolute error for `Incidence::n_dot_h_squared` and `BlinnPhong specular` reached 1.0. \
+         Phong's `R·V = 2(N·L)(N·V) − L·V` has no such cancellation (both terms are positive \
+         there). The batch kernels still use the cosine form (see docs/performance.md).\n\n",
     );
 }
 
@@ -469,10 +478,12 @@ fn four_times_section(o: &mut String) {
 
 /// The crate behaviours the measurement exposed, each recomputed here at one input.
 fn findings_section(o: &mut String) {
-    o.push_str("## What the measurement exposed\n\n");
+    o.push_str("## What the measurement exposed, and was fixed\n\n");
     o.push_str(
-        "Single inputs taken from the worst cases above, recomputed by this run: the crate's \
-         answer next to the reference's.\n\n",
+        "Single inputs taken from the worst cases of the first measurement run. Each exposed a \
+         defect that has since been fixed in the crate; they are recomputed by every run (the \
+         crate's answer next to the reference's), so a regression shows here and in \
+         `tests/accuracy_bounds.rs`.\n\n",
     );
     o.push_str("| behaviour | input | `phong` | reference |\n|---|---|---:|---:|\n");
     let eps = 1e-4f64;
@@ -487,7 +498,7 @@ fn findings_section(o: &mut String) {
     );
     let _ = writeln!(
         o,
-        "| Blinn-Phong's `(N·H)²` cancels when L·V → −1: the grazing mirror highlight vanishes | \
+        "| was: Blinn-Phong's `(N·H)²` cancelled when L·V → −1 and the grazing mirror highlight vanished; now computed from L + V | \
          N = Z, L = (cos ε, 0, sin ε), V = (−cos ε, 0, sin ε), ε = 1e-4, s = 32 | {} | {} |",
         g(got as f64),
         g(want)
@@ -519,7 +530,7 @@ fn findings_section(o: &mut String) {
     .x;
     let _ = writeln!(
         o,
-        "| … so `shade` loses the glint of a low sun on a floor | the same L as a directional \
+        "| was: … so `shade` lost the glint of a low sun on a floor | the same L as a directional \
          light, viewer at infinity along V, Ks = Ls = 1 | {} | {} |",
         g(got as f64),
         g(want)
@@ -538,7 +549,7 @@ fn findings_section(o: &mut String) {
     );
     let _ = writeln!(
         o,
-        "| … and, with the viewer below the surface, a full highlight appears | N = {n:?}, \
+        "| was: … and, with the viewer below the surface, a full highlight appeared | N = {n:?}, \
          L = {l:?}, V = {v:?}, s = {s} | {} | {} |",
         g(got as f64),
         g(want)
@@ -557,8 +568,8 @@ fn findings_section(o: &mut String) {
     let det64 = reference::dm3(m).determinant();
     let _ = writeln!(
         o,
-        "| `normal_matrix` takes sign(det) from an `f32` det that rounds to the wrong sign for a \
-         nearly singular M (det {} exactly, {} in `f32`): every normal flips | columns {:?}, \
+        "| was: `normal_matrix` took sign(det) from an `f32` det that rounds to the wrong sign for a \
+         nearly singular M (det {} exactly, {} in `f32`), flipping every normal; now cofactors and det are computed in `f64` | columns {:?}, \
          {:?}, {:?}; n = {nn:?} | {got:?} | {:?} |",
         g(det64),
         g(det32 as f64),
@@ -571,8 +582,8 @@ fn findings_section(o: &mut String) {
     let t = 0.999_336_24f32;
     let _ = writeln!(
         o,
-        "| `cull_radius` is documented to 1e-6 relative, but where the factor is flat (t near \
-         factor(0)) the `f32` factor's rounding moves the root | Unreal, r = 0.7176131, \
+        "| was: `cull_radius` missed its 1e-6 relative accuracy where the factor is flat (t near \
+         factor(0)), because the `f32` factor's rounding moved the root; now bisected in `f64` | Unreal, r = 0.7176131, \
          t = 0.99933624 | {} | {} |",
         u.cull_radius(t),
         reference::cull_radius(&u, t as f64)
@@ -581,30 +592,30 @@ fn findings_section(o: &mut String) {
     let d = 89.417_44f32;
     let _ = writeln!(
         o,
-        "| the window `1 − (d/r)⁴` cancels as d → r (relative error up to ~2e-3 where the factor \
-         is ~1e-12) | Frostbite, r = 89.41982, d = 89.41744 | {:e} | {:e} |",
+        "| was: the window `1 − (d/r)⁴` cancelled as d → r (relative error up to ~2e-3 where the factor \
+         is ~1e-12); now factored through the exact `r − d` | Frostbite, r = 89.41982, d = 89.41744 | {:e} | {:e} |",
         f.factor(d),
         reference::attenuation(&f, d as f64)
     );
     let a = phong::Attenuation::try_inverse_square(1e3).unwrap();
     let _ = writeln!(
         o,
-        "| the inverse-square factor underflows to 0 once d² overflows (d > 1.8e19), while P/d² is \
-         still a normal `f32` | P = 1e3, d = 2e19 | {:e} | {:e} |",
+        "| was: the inverse-square factor underflowed to 0 once d² overflowed (d > 1.8e19), while P/d² is \
+         still a normal `f32`; now divided twice | P = 1e3, d = 2e19 | {:e} | {:e} |",
         a.factor(2e19),
         reference::attenuation(&a, 2e19)
     );
     let _ = writeln!(
         o,
-        "| `srgb_encode`'s linear segment overflows for x < −f32::MAX/12.92 | x = −f32::MAX | {} | \
+        "| was: `srgb_encode`'s linear segment overflowed for x < −f32::MAX/12.92; now saturates | x = −f32::MAX | {} | \
          {:e} |",
         phong::srgb_encode(-f32::MAX),
         reference::srgb_encode(-(f32::MAX as f64))
     );
     let _ = writeln!(
         o,
-        "| `normal_matrix` of entries near f32::MAX is NaN (∞ − ∞ in the cross products), \
-         documented only as overflow | all nine entries f32::MAX | {:?} | singular: 0 |",
+        "| was: `normal_matrix` of entries near f32::MAX was NaN (∞ − ∞ in the cross products); \
+         now `f64` cofactors, rescaled by a power of two | all nine entries f32::MAX | {:?} | singular: 0 |",
         phong::normal_matrix(glam::Mat3::from_cols_array(&[f32::MAX; 9])).x_axis
     );
     o.push('\n');

@@ -66,12 +66,26 @@ pub enum Attenuation {
 }
 
 /// The windowing function `saturate(1 − (d/r)⁴)²`; 0 for `d ≥ r` (and for `r ≤ 0`).
+///
+/// Factored as `1 − x⁴ = ((r − d)/r)·((r + d)/r)·(1 + x²)`: `r − d` is exact when `d` is near `r`
+/// (Sterbenz), so the window keeps its relative precision where it goes to zero, where the direct
+/// `1 − x⁴` would cancel.
 #[inline]
 fn window(d: f32, r: f32) -> f32 {
     if d < r {
         let x = d / r; // in [0, 1): finite because r > d ≥ 0
-        let x2 = x * x;
-        let w = 1.0 - x2 * x2;
+        let w = ((r - d) / r) * ((r + d) / r) * (1.0 + x * x);
+        w * w
+    } else {
+        0.0
+    }
+}
+
+/// [`window`] in `f64`, for the root search of the cull radius.
+fn window_f64(d: f64, r: f64) -> f64 {
+    if d < r {
+        let x = d / r;
+        let w = ((r - d) / r) * ((r + d) / r) * (1.0 + x * x);
         w * w
     } else {
         0.0
@@ -216,16 +230,17 @@ impl Attenuation {
                 power,
                 min_distance,
             } => {
-                let dd = d.max(min_distance);
-                power / (dd * dd).max(f32::MIN_POSITIVE)
+                // Divide twice: dd² overflows for dd > 1.8e19 while P/dd² is still representable.
+                let dd = d.max(min_distance).max(f32::MIN_POSITIVE);
+                power / dd / dd
             }
             Attenuation::Unreal { radius } => window(d, radius) / (d * d + 1.0),
             Attenuation::Frostbite {
                 radius,
                 min_distance,
             } => {
-                let dd = d.max(min_distance);
-                window(d, radius) / (dd * dd).max(f32::MIN_POSITIVE)
+                let dd = d.max(min_distance).max(f32::MIN_POSITIVE);
+                window(d, radius) / dd / dd
             }
         };
         math::clamp_or_lo(f, 0.0, math::MAX)
@@ -311,25 +326,40 @@ impl Attenuation {
         math::clamp_or_lo(r, 0.0, f32::INFINITY)
     }
 
-    /// Where a decreasing factor crosses `t` on `[0, radius]`.
+    /// Where a decreasing windowed factor crosses `t` on `[0, radius]`, found in `f64` so that
+    /// `f32` rounding of a flat factor does not move the root.
     fn bisect(&self, t: f32, radius: f32) -> f32 {
         if !(radius > 0.0) || self.factor(0.0) < t {
             return 0.0;
         }
-        let (mut lo, mut hi) = (0.0f32, radius);
-        // factor(lo) ≥ t, factor(hi) = 0 < t. 64 halvings exhaust f32's resolution.
-        for _ in 0..64 {
+        let r = radius as f64;
+        let f64_factor = |d: f64| -> f64 {
+            match *self {
+                Attenuation::Unreal { .. } => window_f64(d, r) / (d * d + 1.0),
+                Attenuation::Frostbite { min_distance, .. } => {
+                    let dd = d.max(min_distance as f64).max(f64::MIN_POSITIVE);
+                    window_f64(d, r) / (dd * dd)
+                }
+                _ => 0.0,
+            }
+        };
+        let t = t as f64;
+        let (mut lo, mut hi) = (0.0f64, r);
+        // factor(lo) ≥ t, factor(hi) = 0 < t. 80 halvings exhaust f64's resolution on [0, r].
+        for _ in 0..80 {
             let mid = lo + 0.5 * (hi - lo);
             if mid <= lo || mid >= hi {
                 break;
             }
-            if self.factor(mid) >= t {
+            if f64_factor(mid) >= t {
                 lo = mid;
             } else {
                 hi = mid;
             }
         }
-        hi
+        // Round up to f32 so that factor(d) < t holds past the returned radius.
+        let h = hi as f32;
+        if (h as f64) < hi { h.next_up() } else { h }
     }
 }
 

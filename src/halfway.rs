@@ -14,6 +14,9 @@ use crate::normalize_or_zero;
 /// `H` bisects them: `H·L = H·V`. In the plane of `N`, `L` and `V`, the angle between `N` and `H` is
 /// half the angle between `R` and `V` (see docs/derivations.md).
 ///
+/// Derivation of the bisection and half-angle properties:
+/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-halfway-vector).
+///
 /// **Degenerate input:** when `L = −V` the sum is zero and every direction perpendicular to `L`
 /// bisects them equally; there is no single answer, so this returns `None`. It also returns `None`
 /// for non-finite input. The sum is normalised with [`normalize_or_zero`], so nearly opposite

@@ -2,25 +2,28 @@
 
 use glam::Vec3;
 
-/// The dot products between the unit normal `N`, light direction `L` and view direction `V` at a
-/// point, computed once and shared by the diffuse and specular lobes.
+/// The cosines every lobe is built from, computed once at a point and shared by the diffuse and
+/// specular lobes.
 ///
 /// ```text
 /// n_dot_l = N·L,   n_dot_v = N·V,   l_dot_v = L·V
+/// n_dot_h_sq = (N·H)² = max(N·(L+V), 0)² / ‖L+V‖²        (H = (L+V)/‖L+V‖)
 /// ```
 ///
-/// From these alone, with unit vectors:
-///
-/// ```text
-/// Phong:   R·V = 2 (N·L)(N·V) − L·V                    (R = 2(N·L)N − L)
-/// Blinn:   (N·H)² = max(N·L + N·V, 0)² / (2 + 2 L·V)   (H = (L+V)/‖L+V‖)
-/// ```
-///
-/// so no reflection or halfway vector is ever built (derivations in docs/derivations.md).
+/// With unit vectors Phong needs no vector at all, `R·V = 2(N·L)(N·V) − L·V`
+/// ([`r_dot_v`](Self::r_dot_v)), and Blinn's `(N·H)²` equals `max(N·L + N·V, 0)² / (2 + 2 L·V)`.
+/// That last form is *not* used when the vectors are at hand: as `L → −V` (a grazing light seen
+/// in the mirror direction, e.g. a low sun's glint on a floor) `2 + 2 L·V` cancels catastrophically
+/// once `L·V` has been rounded to `f32`, while `L + V` and `‖L+V‖²` computed from the vectors keep
+/// full relative precision. So [`new`](Self::new) computes `n_dot_h_sq` from the vectors (still
+/// without a square root), and [`from_cosines`](Self::from_cosines) uses the cosine form for
+/// callers who only have cosines. Measured errors of both are in docs/accuracy.md; derivations in
+/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#dot-product-forms-of-the-lobes).
 ///
 /// **Domain:** every direction points away from the surface (to the light, to the viewer) and is
 /// unit, or the zero vector meaning "no such direction". The fields are public so batch code and
-/// renderers with their own cosines can fill them directly.
+/// renderers with their own cosines can fill them directly; keep them in `[−1, 1]` (and
+/// `n_dot_h_sq` in `[0, 1]`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Incidence {
     /// `N·L`, the cosine of the angle of incidence.
@@ -29,15 +32,22 @@ pub struct Incidence {
     pub n_dot_v: f32,
     /// `L·V`, the cosine between the light and the view direction.
     pub l_dot_v: f32,
+    /// `(N·H)²` for the clamped cosine, in `[0, 1]`; 0 when `L = −V` (no halfway vector exists).
+    pub n_dot_h_sq: f32,
 }
 
 impl Incidence {
     /// The cosines of unit `n`, `l`, `v` (debug builds assert unit length or zero).
     ///
+    /// ```text
+    /// (N·L, N·V, L·V),   (N·H)² = max(N·(L+V), 0)² / ‖L+V‖²  (0 if L + V = 0)
+    /// ```
+    ///
     /// ```
     /// use glam::Vec3;
     /// let g = phong::Incidence::new(Vec3::Z, Vec3::Z, Vec3::X);
     /// assert_eq!((g.n_dot_l, g.n_dot_v, g.l_dot_v), (1.0, 0.0, 0.0));
+    /// assert!((g.n_dot_h_sq - 0.5).abs() < 1e-7);
     /// ```
     #[must_use]
     #[inline]
@@ -45,10 +55,52 @@ impl Incidence {
         debug_assert!(unit_or_zero(n), "Incidence::new: n must be unit, got {n}");
         debug_assert!(unit_or_zero(l), "Incidence::new: l must be unit, got {l}");
         debug_assert!(unit_or_zero(v), "Incidence::new: v must be unit, got {v}");
+        let sum = l + v;
+        let t = n.dot(sum).max(0.0);
+        let d = sum.length_squared();
+        // ‖L+V‖² below the smallest normal f32 means L = −V to within 1e-19: no halfway vector.
+        let n_dot_h_sq = if d >= f32::MIN_POSITIVE {
+            (t * t / d).min(1.0)
+        } else {
+            0.0
+        };
         Incidence {
             n_dot_l: n.dot(l),
             n_dot_v: n.dot(v),
             l_dot_v: l.dot(v),
+            n_dot_h_sq,
+        }
+    }
+
+    /// The cosines when only the three cosines are known (no vectors): `(N·H)²` from the cosine form.
+    ///
+    /// ```text
+    /// (N·H)² = max(N·L + N·V, 0)² / (2 + 2 L·V),   0 where 2 + 2 L·V ≤ 1e-12
+    /// ```
+    ///
+    /// **Accuracy:** as good as [`new`](Self::new) except near `L = −V`, where `2 + 2 L·V` cancels
+    /// (docs/accuracy.md measures it): prefer [`new`](Self::new) when the vectors are available.
+    /// **Domain:** cosines in `[−1, 1]`. **Returns** `n_dot_h_sq` in `[0, 1]`.
+    ///
+    /// ```
+    /// let g = phong::Incidence::from_cosines(0.5, 1.0, 0.5);
+    /// assert_eq!(g.n_dot_h_sq, 0.75);
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn from_cosines(n_dot_l: f32, n_dot_v: f32, l_dot_v: f32) -> Self {
+        let t = (n_dot_l + n_dot_v).max(0.0);
+        let den = 2.0 + 2.0 * l_dot_v;
+        let n_dot_h_sq = if den > 1e-12 {
+            (t * t / den).min(1.0)
+        } else {
+            0.0
+        };
+        Incidence {
+            n_dot_l,
+            n_dot_v,
+            l_dot_v,
+            n_dot_h_sq,
         }
     }
 
@@ -68,20 +120,14 @@ impl Incidence {
         (2.0 * self.n_dot_l * self.n_dot_v - self.l_dot_v).clamp(-1.0, 1.0)
     }
 
-    /// Blinn's `(N·H)²` for the clamped cosine: `max(N·L + N·V, 0)² / (2 + 2 L·V)`, in `[0, 1]`.
+    /// Blinn's `(N·H)²`: the field [`n_dot_h_sq`](Self::n_dot_h_sq), clamped to `[0, 1]`.
     ///
-    /// **Degenerate input:** at `L = −V` (where `2 + 2 L·V` falls below `1e-12`) the halfway vector
-    /// does not exist and this returns 0, the same answer as [`halfway`](crate::halfway).
+    /// **Degenerate input:** at `L = −V` the halfway vector does not exist and this is 0, the same
+    /// answer as [`halfway`](crate::halfway) gives (the zero vector).
     #[must_use]
     #[inline]
     pub fn n_dot_h_squared(&self) -> f32 {
-        let s = (self.n_dot_l + self.n_dot_v).max(0.0);
-        let den = 2.0 + 2.0 * self.l_dot_v;
-        if den > 1e-12 {
-            (s * s / den).min(1.0)
-        } else {
-            0.0
-        }
+        crate::math::clamp_or_lo(self.n_dot_h_sq, 0.0, 1.0)
     }
 }
 

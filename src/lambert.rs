@@ -13,7 +13,7 @@ use crate::normalization::Normalization;
 ///
 /// ```
 /// use phong::{Incidence, Lambert, ReflectionModel};
-/// let g = Incidence { n_dot_l: 0.5, n_dot_v: 1.0, l_dot_v: 0.5 };
+/// let g = Incidence::from_cosines(0.5, 1.0, 0.5);
 /// assert_eq!(Lambert::default().diffuse(&g), 0.5);
 /// assert!(!Lambert::HAS_SPECULAR);
 /// ```

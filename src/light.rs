@@ -330,7 +330,8 @@ impl LightSource for PointLight {
 ///
 /// `D` is the unit axis the spot shines along (from the light outward), `L` the direction from the
 /// surface to the light, `e` the exponent (`GL_SPOT_EXPONENT`) and `cutoff` the half-angle of the cone
-/// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]`).
+/// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]`). Derivation:
+/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-spot-factor).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(
     feature = "serde",

@@ -140,11 +140,7 @@ pub fn shade<M: ReflectionModel, L: LightSource>(
         if !lit || sample.direction == Vec3::ZERO {
             continue;
         }
-        let g = Incidence {
-            n_dot_l: n.dot(sample.direction),
-            n_dot_v: n.dot(v),
-            l_dot_v: sample.direction.dot(v),
-        };
+        let g = Incidence::new(n, sample.direction, v);
         // Scalar weights first: finite × finite never gives NaN, and every colour is ≥ 0, so the
         // sums below can overflow to +∞ (saturated at the end) but never produce NaN.
         let wd = (f * model.diffuse(&g)).min(math::MAX);

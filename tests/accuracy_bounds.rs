@@ -136,29 +136,29 @@ const BOUNDS: &[Bound] = &[
         "normal_matrix",
         "random matrices",
         Ulp,
-        10.0,
-        "measured 5.35 ulp of the largest entry: two products and a difference per entry",
+        2.0,
+        "measured 0.500 ulp: f64 cofactors of f32 entries are exact up to one rounding, then one rounding to f32",
     ),
     Bound(
         "transform_normal",
         "random matrices",
         Ulp,
-        1000.0,
-        "measured 437 ulp: random matrices include ill-conditioned ones; the error follows the condition number",
+        300.0,
+        "measured 73 ulp: the f32 matrix-vector product of an ill-conditioned normal matrix; error follows the condition number",
     ),
     Bound(
         "normal_matrix",
         "near-singular",
         Rel,
-        2.01,
-        "measured 2.00: sign(det) decided on an f32 det that rounds to the wrong sign flips the whole matrix (reported as a crate issue)",
+        2e-7,
+        "measured 5.88e-8 with f64 cofactors and det (was 2.00: an f32 det of the wrong sign flipped the matrix)",
     ),
     Bound(
         "transform_normal",
         "near-singular",
         Rel,
-        2.01,
-        "measured 2.00: the same sign flip (reported as a crate issue)",
+        5e-4,
+        "measured 1.06e-4: the f32 product NM·n of a near-singular normal matrix (was 2.00 from the sign flip)",
     ),
     // Attenuation
     Bound(
@@ -364,8 +364,8 @@ const BOUNDS: &[Bound] = &[
         "Incidence::n_dot_h_squared",
         "L, V grazing",
         Abs,
-        1.01,
-        "measured 0.202: KNOWN ISSUE, (N·H)² cancels for grazing L, V from opposite sides (reported)",
+        1e-6,
+        "measured 2.88e-7 with (N·H)² from L + V (was 0.202 with the cosine form): a few ulps of a value ≤ 1",
     ),
     Bound(
         "Phong specular",
@@ -378,8 +378,8 @@ const BOUNDS: &[Bound] = &[
         "BlinnPhong specular",
         "L, V grazing",
         Abs,
-        1.01,
-        "measured 0.612: KNOWN ISSUE, the (N·H)² cancellation (reported); the bound is the range contract",
+        1e-4,
+        "measured 2.98e-5 with s up to 1e4 (was 0.612 with the cosine form)",
     ),
     Bound(
         "Phong specular, Energy",
@@ -392,15 +392,15 @@ const BOUNDS: &[Bound] = &[
         "BlinnPhong specular, Energy",
         "L, V grazing",
         Abs,
-        0.1,
-        "measured 0.0352: KNOWN ISSUE as above, damped by the N·L factor",
+        1e-3,
+        "measured 2.64e-4 on lobes scaled by up to (s+8)/8π ≈ 398 and damped by N·L (was 0.0352)",
     ),
     Bound(
         "BlinnPhong specular, EnergyExact",
         "L, V grazing",
         Abs,
-        0.1,
-        "measured 0.0352: KNOWN ISSUE as above",
+        1e-3,
+        "measured 2.64e-4 (was 0.0352)",
     ),
     Bound(
         "Phong specular, PowStrategy::Squaring",
@@ -434,8 +434,8 @@ const BOUNDS: &[Bound] = &[
         "Incidence::n_dot_h_squared",
         "L grazing, V within",
         Abs,
-        1.01,
-        "measured 1.00: KNOWN ISSUE (reported)",
+        1e-6,
+        "measured 3.65e-7 (was 1.00 with the cosine form)",
     ),
     Bound(
         "Phong specular",
@@ -448,8 +448,8 @@ const BOUNDS: &[Bound] = &[
         "BlinnPhong specular",
         "L grazing, V within",
         Abs,
-        1.01,
-        "measured 1.00: KNOWN ISSUE (reported); the range contract",
+        5e-3,
+        "measured 1.40e-3: s up to 1e4 at the peak, s·1e-7 as for Phong (was 1.00)",
     ),
     Bound(
         "Phong specular, Energy",
@@ -462,15 +462,15 @@ const BOUNDS: &[Bound] = &[
         "BlinnPhong specular, Energy",
         "L grazing, V within",
         Abs,
-        10.0,
-        "measured 3.28: KNOWN ISSUE (reported)",
+        0.1,
+        "measured 0.0325 on lobes up to ≈ 398 (was 3.28)",
     ),
     Bound(
         "BlinnPhong specular, EnergyExact",
         "L grazing, V within",
         Abs,
-        10.0,
-        "measured 3.28: KNOWN ISSUE (reported)",
+        0.1,
+        "measured 0.0325 (was 3.28)",
     ),
     Bound(
         "Phong specular, PowStrategy::Squaring",
@@ -504,8 +504,8 @@ const BOUNDS: &[Bound] = &[
         "Incidence::n_dot_h_squared",
         "L, V nearly opposite",
         Abs,
-        1.01,
-        "measured 1.00: KNOWN ISSUE (reported)",
+        1e-6,
+        "measured 3.15e-7 (was 1.00 with the cosine form)",
     ),
     Bound(
         "Phong specular",
@@ -518,8 +518,8 @@ const BOUNDS: &[Bound] = &[
         "BlinnPhong specular",
         "L, V nearly opposite",
         Abs,
-        1.01,
-        "measured 1.00: KNOWN ISSUE (reported); the range contract",
+        3e-4,
+        "measured 7.40e-5 (was 1.00)",
     ),
     Bound(
         "Phong specular, Energy",
@@ -532,15 +532,15 @@ const BOUNDS: &[Bound] = &[
         "BlinnPhong specular, Energy",
         "L, V nearly opposite",
         Abs,
-        400.0,
-        "measured 105: KNOWN ISSUE (reported); the factor (s+8)/8π ≤ 398 at s = 1e4",
+        1.5e-3,
+        "measured 3.76e-4 (was 105)",
     ),
     Bound(
         "BlinnPhong specular, EnergyExact",
         "L, V nearly opposite",
         Abs,
-        400.0,
-        "measured 105: KNOWN ISSUE (reported)",
+        1.5e-3,
+        "measured 3.76e-4 (was 105)",
     ),
     Bound(
         "Phong specular, PowStrategy::Squaring",
@@ -854,19 +854,24 @@ fn four_times_rule_error_is_as_documented() {
 }
 
 #[test]
-fn blinn_lobe_at_opposite_grazing_directions_is_pinned() {
-    // KNOWN ISSUE (reported): with N = Z and L, V at ε = 1e-4 rad above the plane on opposite
-    // sides, H = N exactly and the true lobe is 1, but (N·H)² = (N·L + N·V)² / (2 + 2 L·V) has a
-    // denominator below f32 resolution. This test records the current answer so a fix is noticed
-    // (and the bound tables above can then be tightened): it must stay within the lobe's range.
-    let eps = 1e-4f64;
-    let l = DVec3::new(eps.cos(), 0.0, eps.sin()).as_vec3();
-    let v = DVec3::new(-eps.cos(), 0.0, eps.sin()).as_vec3();
-    let got = BlinnPhong::default().specular(&Incidence::new(Vec3::Z, l, v), 32.0);
-    assert!((0.0..=1.0).contains(&got), "lobe out of range: {got}");
-    let vector_form = phong::PowStrategy::Exact.lobe(Vec3::Z.dot(phong::halfway(l, v)), 32.0);
-    assert!(
-        (vector_form - 1.0).abs() < 1e-6,
-        "the vector form keeps it: {vector_form}"
-    );
+fn blinn_lobe_at_opposite_grazing_directions_keeps_the_highlight() {
+    // Found by the first measurement run: with N = Z and L, V at ε above the plane on opposite
+    // sides, H = N exactly and the true lobe is 1, but the cosine form
+    // (N·H)² = (N·L + N·V)² / (2 + 2 L·V) has a denominator below f32 resolution and gave 0.
+    // Incidence::new now computes (N·H)² from L + V; the lobe must be 1 to a few ulps × s.
+    for eps in [1e-2f64, 1e-4, 1e-6] {
+        let l = DVec3::new(eps.cos(), 0.0, eps.sin()).as_vec3();
+        let v = DVec3::new(-eps.cos(), 0.0, eps.sin()).as_vec3();
+        let got = BlinnPhong::default().specular(&Incidence::new(Vec3::Z, l, v), 32.0);
+        // (N·H)² is within 2 ulps of 1, and raising to s/2 = 16 multiplies that by 16.
+        assert!(
+            (got - 1.0).abs() < 16.0 * 2.0 * f32::EPSILON,
+            "ε = {eps:e}: Blinn-Phong lobe {got}, want 1"
+        );
+        // The cosine form still fails here, which is why it is not used when vectors exist.
+        let g = Incidence::new(Vec3::Z, l, v);
+        let cos_form = BlinnPhong::default()
+            .specular(&Incidence::from_cosines(g.n_dot_l, g.n_dot_v, g.l_dot_v), 32.0);
+        assert!((0.0..=1.0).contains(&cos_form), "cosine form in range: {cos_form}");
+    }
 }

@@ -118,11 +118,7 @@ fn light_at_45_degrees_gives_diffuse_sqrt2_over_2() {
 fn cosine_formulas() {
     // N·L = 0.5, N·V = 1, L·V = 0.5 (V = N, L at 60°):
     // R·V = 2·0.5·1 − 0.5 = 0.5; (N·H)² = (0.5 + 1)²/(2 + 2·0.5) = 2.25/3 = 0.75.
-    let g = Incidence {
-        n_dot_l: 0.5,
-        n_dot_v: 1.0,
-        l_dot_v: 0.5,
-    };
+    let g = Incidence::from_cosines(0.5, 1.0, 0.5);
     assert_eq!(g.r_dot_v(), 0.5, "R·V");
     assert_eq!(g.n_dot_h_squared(), 0.75, "(N·H)²");
     // Phong with s = 1 is R·V; with s = 3 it is 0.125 (exact).

@@ -206,11 +206,7 @@ pub fn cases() -> Vec<Case> {
             phong: Side {
                 code: "PowStrategy::Exact.lobe(0, 0), Phong specular at R·V = −0.5, s = 0",
                 run: || {
-                    let g = Incidence {
-                        n_dot_l: 0.5,
-                        n_dot_v: 0.0,
-                        l_dot_v: 0.5,
-                    };
+                    let g = Incidence::from_cosines(0.5, 0.0, 0.5);
                     vec![
                         PowStrategy::Exact.lobe(0.0, 0.0),
                         PowStrategy::Squaring.lobe(0.0, 0.0),
