@@ -236,20 +236,19 @@ impl App {
             let side = (room.x.min(room.y) * ppp).clamp(64.0, 2048.0) as usize / 16 * 16;
             self.params.size = [side, side];
         }
-        let frame = self.frame().clone();
-        let texture = match &self.texture {
-            Some(t) => t.clone(),
-            None => {
+        self.frame();
+        let (_, _, frame) = self.rendered.as_ref().expect("rendered by frame()");
+        let texture = self
+            .texture
+            .get_or_insert_with(|| {
                 let img = &frame.image;
                 let rgb: Vec<u8> = img.pixels.iter().flatten().copied().collect();
                 let color = ColorImage::from_rgb([img.width, img.height], &rgb);
-                let t = ui
-                    .ctx()
-                    .load_texture("explorer-render", color, TextureOptions::LINEAR);
-                self.texture = Some(t.clone());
-                t
-            }
-        };
+                ui.ctx()
+                    .load_texture("explorer-render", color, TextureOptions::LINEAR)
+            })
+            .id();
+        let (stats, elapsed, max_error_steps) = (frame.stats, frame.elapsed, frame.max_error_steps);
         let [w, h] = [frame.image.width as f32, frame.image.height as f32];
         // Fit the picture in the space left for it, keeping its aspect ratio, at most 2×.
         let scale = if self.fit_to_window {
@@ -258,15 +257,15 @@ impl App {
             (room.x / w).min(room.y / h).clamp(0.25, 2.0)
         };
         let r = ui.add(
-            egui::Image::new((texture.id(), egui::vec2(w * scale, h * scale)))
+            egui::Image::new((texture, egui::vec2(w * scale, h * scale)))
                 .alt_text("The rendered object"),
         );
         self.remember(ui, "image", r.rect);
 
-        let s = frame.stats;
+        let s = stats;
         ui.label(format!(
             "Frame time: {} ({} pixels shaded, {} shader calls)",
-            format_duration(frame.elapsed),
+            format_duration(elapsed),
             s.pixels,
             s.shader_calls
         ));
@@ -284,7 +283,7 @@ impl App {
             "Per vertex: {} of {} visible triangles ({pct:.0}%, {decided})",
             s.per_vertex, s.triangles
         ));
-        if let Some(e) = frame.max_error_steps {
+        if let Some(e) = max_error_steps {
             let colour = if self.params.frequency == ShadingMode::Adaptive
                 && e > self.params.tolerance_steps
             {
