@@ -35,10 +35,26 @@ fn to_glam(v: OtherVec) -> Vec3 {
 }
 
 fn main() -> Result<(), phong::PhongError> {
-    let light_at = OtherVec { x: 2.0, y: 3.0, z: 4.0 };
-    let eye = OtherVec { x: 0.0, y: 0.0, z: 5.0 };
-    let point = OtherVec { x: 0.0, y: 0.0, z: 0.0 };
-    let normal = OtherVec { x: 0.0, y: 0.0, z: 1.0 };
+    let light_at = OtherVec {
+        x: 2.0,
+        y: 3.0,
+        z: 4.0,
+    };
+    let eye = OtherVec {
+        x: 0.0,
+        y: 0.0,
+        z: 5.0,
+    };
+    let point = OtherVec {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    };
+    let normal = OtherVec {
+        x: 0.0,
+        y: 0.0,
+        z: 1.0,
+    };
 
     let light = PointLight::try_new(
         to_glam(light_at),

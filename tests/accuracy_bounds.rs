@@ -870,8 +870,13 @@ fn blinn_lobe_at_opposite_grazing_directions_keeps_the_highlight() {
         );
         // The cosine form still fails here, which is why it is not used when vectors exist.
         let g = Incidence::new(Vec3::Z, l, v);
-        let cos_form = BlinnPhong::default()
-            .specular(&Incidence::from_cosines(g.n_dot_l, g.n_dot_v, g.l_dot_v), 32.0);
-        assert!((0.0..=1.0).contains(&cos_form), "cosine form in range: {cos_form}");
+        let cos_form = BlinnPhong::default().specular(
+            &Incidence::from_cosines(g.n_dot_l, g.n_dot_v, g.l_dot_v),
+            32.0,
+        );
+        assert!(
+            (0.0..=1.0).contains(&cos_form),
+            "cosine form in range: {cos_form}"
+        );
     }
 }
