@@ -328,12 +328,10 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
             let nn = dot(n, n);
             let mut ok = in_range(nn);
             let inv_n = rsqrt(nn);
-            let u = [
-                _mm512_mul_ps(n[0], inv_n),
-                _mm512_mul_ps(n[1], inv_n),
-                _mm512_mul_ps(n[2], inv_n),
-            ];
-            let v = match k.view {
+            // Cosines from unnormalised vectors times inverse norms, N·V = (n·V)/(‖n‖‖V‖) and so
+            // on: the dot products run alongside the inverse square roots instead of after them.
+            // The loop is bound by these dependency chains, not by the number of operations.
+            let (v, inv_v) = match k.view {
                 ViewK::At(e) => {
                     let d = [
                         _mm512_sub_ps(splat(e.x), p[0]),
@@ -342,16 +340,11 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                     ];
                     let vv = dot(d, d);
                     ok &= in_range(vv);
-                    let inv = rsqrt(vv);
-                    [
-                        _mm512_mul_ps(d[0], inv),
-                        _mm512_mul_ps(d[1], inv),
-                        _mm512_mul_ps(d[2], inv),
-                    ]
+                    (d, rsqrt(vv))
                 }
-                ViewK::Infinite(d) => [splat(d.x), splat(d.y), splat(d.z)],
+                ViewK::Infinite(d) => ([splat(d.x), splat(d.y), splat(d.z)], splat(1.0)),
             };
-            let nv = dot(u, v);
+            let nv = _mm512_mul_ps(dot(n, v), _mm512_mul_ps(inv_n, inv_v));
             let mut acc = [splat(k.base.x), splat(k.base.y), splat(k.base.z)];
             let lm = &k.lm;
             let zero = _mm512_setzero_ps();
@@ -364,7 +357,8 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                     &owned
                 };
                 let (ka, kd, ks) = (&lj.ka, &lj.kd, &lj.ks);
-                let (l, att) = match lj.lane {
+                // (N·L, L unnormalised, 1/(‖L‖‖V‖), attenuation)
+                let (nl, l, inv_lv, att) = match lj.lane {
                     LaneLight::AmbientOnly => {
                         acc = [
                             _mm512_add_ps(acc[0], ka[0]),
@@ -373,7 +367,10 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                         ];
                         continue;
                     }
-                    LaneLight::Directional(_) => (lj.q, splat(1.0)),
+                    LaneLight::Directional(_) => {
+                        let l = lj.q;
+                        (_mm512_mul_ps(dot(n, l), inv_n), l, inv_v, splat(1.0))
+                    }
                     LaneLight::Point { .. } => {
                         let [q0, q1, q2] = lj.q;
                         let [c0, c1, c2] = lj.c;
@@ -384,6 +381,7 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                         ];
                         let ll = dot(d, d);
                         ok &= in_range(ll);
+                        let nd = dot(n, d);
                         let inv = rsqrt(ll);
                         let dist = _mm512_mul_ps(ll, inv);
                         let den = _mm512_fmadd_ps(dist, _mm512_fmadd_ps(c2, dist, c1), c0);
@@ -392,16 +390,13 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                             _mm512_max_ps(den, splat(Attenuation::MIN_DENOMINATOR)),
                         );
                         (
-                            [
-                                _mm512_mul_ps(d[0], inv),
-                                _mm512_mul_ps(d[1], inv),
-                                _mm512_mul_ps(d[2], inv),
-                            ],
+                            _mm512_mul_ps(nd, _mm512_mul_ps(inv_n, inv)),
+                            d,
+                            _mm512_mul_ps(inv, inv_v),
                             att,
                         )
                     }
                 };
-                let nl = dot(u, l);
                 let nl0 = _mm512_max_ps(nl, zero);
                 // Per channel: acc += f · (Ka⊙La + max(N·L, 0)·Kd⊙Ld + gate·lobe·Ks⊙Ls).
                 let mut t = [
@@ -410,7 +405,7 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                     _mm512_fmadd_ps(nl0, kd[2], ka[2]),
                 ];
                 if k.specular_on {
-                    let lv = dot(l, v);
+                    let lv = _mm512_mul_ps(dot(l, v), inv_lv);
                     let base = match lm.lobe {
                         Lobe::Blinn => {
                             let s = _mm512_max_ps(_mm512_add_ps(nl, nv), zero);
