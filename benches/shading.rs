@@ -1,2 +1,397 @@
-//! Placeholder; the real benches arrive with the batch path.
-fn main() {}
+//! Shading throughput: plain per-point glam code against the crate's scalar and batch paths.
+//!
+//! Groups `phong_4096`, `blinn_4096`, `phong_1m`, `blinn_1m`, each with
+//! - `naive_glam`: LearnOpenGL's point-light shader transcribed per point with glam `Vec3`
+//!   (normalize, reflect / halfway, `powf`, `1/(c + l·d + q·d²)`), written here, not in the crate;
+//! - `scalar`: `phong::shade` in a loop over the same array-of-structs input;
+//! - `batch`: `phong::shade_batch` on structure-of-arrays copies (shininess 32);
+//! - `batch_frac`: the same at shininess 20.5 (a non-integer exponent: polynomial pow).
+//!
+//! Extra groups for docs/performance.md: `pow_4096` (every pow strategy, both models, s = 32 and
+//! 20.5) and `levels_4096` (every dispatch level this CPU runs).
+//!
+//! Before timing, each group asserts that `scalar`, `batch` and `batch_frac` agree with
+//! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
+//!
+//! Run: `cargo bench --bench shading`; then `cargo run --release --example performance`.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::Vec3;
+use phong::{
+    Attenuation, BlinnPhong, Level, LightColors, Material, Phong, PointLight, PowStrategy, Scene,
+    SoaRgb, SoaVec3, Viewer,
+};
+
+const LIGHT_POS: Vec3 = Vec3::new(1.2, 1.0, 2.0);
+const VIEW_POS: Vec3 = Vec3::new(0.0, 0.0, 3.0);
+const ATT: (f32, f32, f32) = (1.0, 0.09, 0.032);
+const LA: Vec3 = Vec3::splat(0.2);
+const LD: Vec3 = Vec3::splat(0.5);
+const LS: Vec3 = Vec3::splat(1.0);
+const KA: Vec3 = Vec3::new(1.0, 0.5, 0.31);
+const KD: Vec3 = Vec3::new(1.0, 0.5, 0.31);
+const KS: Vec3 = Vec3::splat(0.5);
+
+/// splitmix64: a small deterministic generator, so every run shades the same points.
+struct Rng(u64);
+impl Rng {
+    fn next_f32(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next_f32()
+    }
+}
+
+/// Random positions in a 4-unit box around the origin and random unit normals.
+fn points(n: usize) -> (Vec<Vec3>, Vec<Vec3>) {
+    let mut rng = Rng(0x5eed);
+    let mut p = Vec::with_capacity(n);
+    let mut nn = Vec::with_capacity(n);
+    for _ in 0..n {
+        p.push(Vec3::new(
+            rng.range(-2.0, 2.0),
+            rng.range(-2.0, 2.0),
+            rng.range(-2.0, 2.0),
+        ));
+        let v = loop {
+            let v = Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            );
+            let l = v.length_squared();
+            if l > 1e-4 && l <= 1.0 {
+                break v.normalize();
+            }
+        };
+        nn.push(v);
+    }
+    (p, nn)
+}
+
+/// Nine structure-of-arrays slices carved from one buffer at staggered offsets, so no two arrays
+/// start at the same offset within a 4 KiB page (PERF-NOTES: same-offset arrays cost 1.5×).
+struct Soa {
+    buf: Vec<f32>,
+    n: usize,
+    stride: usize,
+}
+impl Soa {
+    fn new(n: usize) -> Self {
+        let stride = n + 272; // 1088 bytes: a different 4 KiB offset per array
+        Soa {
+            buf: vec![0.0; 9 * stride + 64],
+            n,
+            stride,
+        }
+    }
+    fn arr(&self, k: usize) -> &[f32] {
+        &self.buf[k * self.stride..k * self.stride + self.n]
+    }
+    fn fill(&mut self, p: &[Vec3], nn: &[Vec3]) {
+        for i in 0..self.n {
+            let v = [p[i].x, p[i].y, p[i].z, nn[i].x, nn[i].y, nn[i].z];
+            for (k, x) in v.into_iter().enumerate() {
+                self.buf[k * self.stride + i] = x;
+            }
+        }
+    }
+    /// Positions, normals, and the mutable outputs.
+    fn split(&mut self) -> (SoaVec3<'_>, SoaVec3<'_>, SoaRgb<'_>) {
+        let (s, n) = (self.stride, self.n);
+        let (inp, outp) = self.buf.split_at_mut(6 * s);
+        let a = |k: usize| &inp[k * s..k * s + n];
+        let (r, rest) = outp.split_at_mut(s);
+        let (g, b) = rest.split_at_mut(s);
+        (
+            SoaVec3::new(a(0), a(1), a(2)),
+            SoaVec3::new(a(3), a(4), a(5)),
+            SoaRgb::new(&mut r[..n], &mut g[..n], &mut b[..n]),
+        )
+    }
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Phong,
+    Blinn,
+}
+
+/// LearnOpenGL's point-light shader (basic lighting + attenuation), per point, with glam, with the
+/// crate's default step gate on the specular term.
+#[inline(never)]
+fn naive_glam(kind: Kind, shininess: f32, p: &[Vec3], n: &[Vec3], out: &mut [Vec3]) {
+    for i in 0..p.len() {
+        let norm = n[i].normalize();
+        let light_dir = (LIGHT_POS - p[i]).normalize();
+        let diff = norm.dot(light_dir).max(0.0);
+        let view_dir = (VIEW_POS - p[i]).normalize();
+        let spec_base = match kind {
+            Kind::Phong => {
+                let reflect_dir = (-light_dir).reflect(norm);
+                view_dir.dot(reflect_dir).max(0.0)
+            }
+            Kind::Blinn => {
+                let halfway = (light_dir + view_dir).normalize();
+                norm.dot(halfway).max(0.0)
+            }
+        };
+        let spec = if norm.dot(light_dir) > 0.0 {
+            spec_base.powf(shininess)
+        } else {
+            0.0
+        };
+        let distance = (LIGHT_POS - p[i]).length();
+        let attenuation = 1.0 / (ATT.0 + ATT.1 * distance + ATT.2 * distance * distance);
+        let ambient = LA * KA;
+        let diffuse = LD * diff * KD;
+        let specular = LS * spec * KS;
+        out[i] = (ambient + diffuse + specular) * attenuation;
+    }
+}
+
+fn light() -> PointLight {
+    PointLight::try_new(
+        LIGHT_POS,
+        Attenuation::try_polynomial(ATT.0, ATT.1, ATT.2).unwrap(),
+        LightColors::try_new(LA, LD, LS).unwrap(),
+    )
+    .unwrap()
+}
+
+fn material(shininess: f32) -> Material {
+    Material::try_new(KA, KD, KS, shininess).unwrap()
+}
+
+/// The crate's models, configured like `naive_glam`: step gate, classic lobes, automatic pow.
+fn phong_model(pow: PowStrategy) -> Phong {
+    Phong {
+        pow,
+        ..Phong::default()
+    }
+}
+fn blinn_model(pow: PowStrategy) -> BlinnPhong {
+    BlinnPhong {
+        pow,
+        ..BlinnPhong::default()
+    }
+}
+
+#[inline(never)]
+fn scalar_loop<M: phong::ReflectionModel>(
+    model: &M,
+    mat: &Material,
+    scene: &Scene<'_, PointLight>,
+    p: &[Vec3],
+    n: &[Vec3],
+    out: &mut [Vec3],
+) {
+    for i in 0..p.len() {
+        out[i] = phong::shade(model, mat, scene, p[i], n[i]).total();
+    }
+}
+
+fn batch_run<M: phong::BatchModel>(
+    level: Level,
+    model: &M,
+    mat: &Material,
+    scene: &Scene<'_, PointLight>,
+    soa: &mut Soa,
+) {
+    let (pos, nor, out) = soa.split();
+    phong::shade_batch_with_level(level, model, mat, scene, pos, nor, out).unwrap();
+}
+
+fn soa_out(soa: &Soa, i: usize) -> Vec3 {
+    Vec3::new(soa.arr(6)[i], soa.arr(7)[i], soa.arr(8)[i])
+}
+
+/// `|a − b| ≤ 1e-4 + 1e-4·|b|` per channel: the pow strategies' and inverse norms' error on
+/// outputs of order 1, with room for f32 rounding in the different operation orders.
+fn assert_close(what: &str, a: Vec3, b: Vec3, i: usize) {
+    let tol = Vec3::splat(1e-4) + b.abs() * 1e-4;
+    assert!(
+        (a - b).abs().cmple(tol).all(),
+        "{what} disagrees with naive_glam at point {i}: {a} vs {b}"
+    );
+}
+
+fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
+    let (p, nn) = points(n);
+    let lights = [light()];
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(VIEW_POS),
+    };
+    let (m32, m20) = (material(32.0), material(20.5));
+    let mut soa = Soa::new(n);
+    soa.fill(&p, &nn);
+    let mut naive = vec![Vec3::ZERO; n];
+    let mut scalar = vec![Vec3::ZERO; n];
+    let level = Level::detect();
+
+    // Agreement on the same inputs, before any timing.
+    let check = |soa: &mut Soa, scalar: &mut Vec<Vec3>, naive: &mut Vec<Vec3>, s: f32| {
+        let m = material(s);
+        naive_glam(kind, s, &p, &nn, naive);
+        match kind {
+            Kind::Phong => {
+                scalar_loop(&phong_model(PowStrategy::Auto), &m, &scene, &p, &nn, scalar);
+                batch_run(level, &phong_model(PowStrategy::Auto), &m, &scene, soa);
+            }
+            Kind::Blinn => {
+                scalar_loop(&blinn_model(PowStrategy::Auto), &m, &scene, &p, &nn, scalar);
+                batch_run(level, &blinn_model(PowStrategy::Auto), &m, &scene, soa);
+            }
+        }
+        for i in 0..n {
+            assert_close("scalar", scalar[i], naive[i], i);
+            assert_close("batch", soa_out(soa, i), naive[i], i);
+        }
+    };
+    check(&mut soa, &mut scalar, &mut naive, 20.5);
+    check(&mut soa, &mut scalar, &mut naive, 32.0);
+
+    let mut g = c.benchmark_group(name);
+    g.throughput(Throughput::Elements(n as u64));
+    if n > 100_000 {
+        g.sample_size(10)
+            .warm_up_time(Duration::from_millis(500))
+            .measurement_time(Duration::from_secs(2));
+    } else {
+        g.warm_up_time(Duration::from_millis(500))
+            .measurement_time(Duration::from_secs(2));
+    }
+    g.bench_function("naive_glam", |b| {
+        b.iter(|| naive_glam(kind, 32.0, black_box(&p), black_box(&nn), &mut naive))
+    });
+    match kind {
+        Kind::Phong => {
+            let model = phong_model(PowStrategy::Auto);
+            g.bench_function("scalar", |b| {
+                b.iter(|| scalar_loop(&model, &m32, &scene, black_box(&p), &nn, &mut scalar))
+            });
+            g.bench_function("batch", |b| {
+                b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))
+            });
+            g.bench_function("batch_frac", |b| {
+                b.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
+            });
+        }
+        Kind::Blinn => {
+            let model = blinn_model(PowStrategy::Auto);
+            g.bench_function("scalar", |b| {
+                b.iter(|| scalar_loop(&model, &m32, &scene, black_box(&p), &nn, &mut scalar))
+            });
+            g.bench_function("batch", |b| {
+                b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))
+            });
+            g.bench_function("batch_frac", |b| {
+                b.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
+            });
+        }
+    }
+    g.finish();
+}
+
+fn phong_4096(c: &mut Criterion) {
+    group(c, "phong_4096", Kind::Phong, 4096);
+}
+fn blinn_4096(c: &mut Criterion) {
+    group(c, "blinn_4096", Kind::Blinn, 4096);
+}
+fn phong_1m(c: &mut Criterion) {
+    group(c, "phong_1m", Kind::Phong, 1 << 20);
+}
+fn blinn_1m(c: &mut Criterion) {
+    group(c, "blinn_1m", Kind::Blinn, 1 << 20);
+}
+
+/// Every pow strategy in the batch path, both models, at s = 32 and s = 20.5 (N = 4096).
+fn pow_4096(c: &mut Criterion) {
+    let n = 4096;
+    let (p, nn) = points(n);
+    let lights = [light()];
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(VIEW_POS),
+    };
+    let mut soa = Soa::new(n);
+    soa.fill(&p, &nn);
+    let level = Level::detect();
+    let mut g = c.benchmark_group("pow_4096");
+    g.throughput(Throughput::Elements(n as u64))
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_millis(1500));
+    for s in [32.0f32, 20.5] {
+        let m = material(s);
+        for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+            let id = format!("{}/{}", pow.name(), s);
+            let (pm, bm) = (phong_model(pow), blinn_model(pow));
+            g.bench_function(BenchmarkId::new("phong", &id), |b| {
+                b.iter(|| batch_run(level, black_box(&pm), &m, &scene, &mut soa))
+            });
+            g.bench_function(BenchmarkId::new("blinn", &id), |b| {
+                b.iter(|| batch_run(level, black_box(&bm), &m, &scene, &mut soa))
+            });
+        }
+    }
+    g.finish();
+}
+
+/// The batch path forced to each dispatch level this CPU runs (N = 4096, s = 32 and 20.5).
+fn levels_4096(c: &mut Criterion) {
+    let n = 4096;
+    let (p, nn) = points(n);
+    let lights = [light()];
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(VIEW_POS),
+    };
+    let mut soa = Soa::new(n);
+    soa.fill(&p, &nn);
+    let mut g = c.benchmark_group("levels_4096");
+    g.throughput(Throughput::Elements(n as u64))
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_millis(1500));
+    for level in Level::supported() {
+        for s in [32.0f32, 20.5] {
+            let m = material(s);
+            let (pm, bm) = (
+                phong_model(PowStrategy::Auto),
+                blinn_model(PowStrategy::Auto),
+            );
+            let id = format!("{}/{}", level.name(), s);
+            g.bench_function(BenchmarkId::new("phong", &id), |b| {
+                b.iter(|| batch_run(level, black_box(&pm), &m, &scene, &mut soa))
+            });
+            g.bench_function(BenchmarkId::new("blinn", &id), |b| {
+                b.iter(|| batch_run(level, black_box(&bm), &m, &scene, &mut soa))
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    phong_4096,
+    blinn_4096,
+    phong_1m,
+    blinn_1m,
+    pow_4096,
+    levels_4096
+);
+criterion_main!(benches);
