@@ -24,6 +24,7 @@ use raster::{
 };
 
 /// The command line, in the spirit of the notes' sliders.
+#[derive(Clone)]
 struct Options {
     model: Model,
     model_name: &'static str,
@@ -33,6 +34,10 @@ struct Options {
     out: PathBuf,
 }
 
+/// The default sun: from the side, so the sphere scenes show the terminator and the
+/// adaptive shading-rate figures have a highlight and a shadow to deal with.
+const DEFAULT_LIGHT: Vec3 = Vec3::new(-3.0, 2.0, 0.0);
+
 const USAGE: &str = "usage: gallery [--model phong|blinn] [--shininess S] [--light X,Y,Z] \
                      [--size PIXELS] [--out DIR]";
 
@@ -41,7 +46,7 @@ fn parse_args() -> Result<Options, String> {
         model: Phong::default().into(),
         model_name: "Phong",
         shininess: 32.0,
-        light: Vec3::new(-3.0, 2.0, 0.0),
+        light: DEFAULT_LIGHT,
         size: 256,
         out: PathBuf::from("out/gallery"),
     };
@@ -373,7 +378,13 @@ fn phong_vs_blinn(opts: &Options, g: &mut Gallery) {
 }
 
 fn sweep(opts: &Options, g: &mut Gallery) {
-    let (camera, sun, viewer) = sphere_setup(opts);
+    // The lobe's width is the point of this row, so the sun is turned toward the viewer (unless
+    // --light was given): then the whole highlight sits on the visible face, not on the rim.
+    let mut opts = opts.clone();
+    if opts.light == DEFAULT_LIGHT {
+        opts.light = Vec3::new(-1.0, 1.0, 1.5);
+    }
+    let (camera, sun, viewer) = sphere_setup(&opts);
     let sphere = Mesh::icosphere(3);
     let lights = [sun];
     let scene = Scene {
