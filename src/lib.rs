@@ -143,6 +143,11 @@ pub use shading_rate::{gouraud_error_bound, gouraud_within_tolerance};
 pub use triangle::{triangle_area_normal, triangle_normal, try_triangle_normal};
 pub use vertex_normals::vertex_normals;
 
+// The README's Rust examples compile and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
+
 /// Re-export of the glam version this crate's API uses, so users can name `phong::glam::Vec3`
 /// without a version mismatch.
 pub use glam;

@@ -66,8 +66,10 @@ pub fn normal_matrix(m: Mat3) -> Mat3 {
     // Inside [2^-100, 2^100] every entry that matters fits f32 as it is; outside, rescale by a
     // power of two (exact) so the largest entry is about 1.
     let scale = if largest > 0.0 && largest.is_finite() && !(1e-30..=1e30).contains(&largest) {
-        let e = largest.log2().round() as i32;
-        2f64.powi(-e)
+        // 2^-e from the exponent field (no log2/powi: they need std). Products of f32 entries
+        // lie in about [1e-90, 1e77], far inside f64's normal range, so e ∈ [-300, 300].
+        let e = ((largest.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+        f64::from_bits(((1023 - e) as u64) << 52)
     } else {
         1.0
     };

@@ -35,17 +35,21 @@ fn glsl() -> Module {
     m
 }
 
-/// (member name, offset) pairs and the span of the struct called `name`.
-fn layout(module: &Module, name: &str) -> (Vec<(String, u32)>, u32) {
+/// A struct's (member name, offset) pairs and its size in bytes.
+type Layout = (Vec<(String, u32)>, u32);
+
+/// The layout of the struct called `name`, as naga computed it.
+fn layout(module: &Module, name: &str) -> Layout {
     for (_, ty) in module.types.iter() {
-        if ty.name.as_deref() == Some(name) {
-            if let TypeInner::Struct { members, span } = &ty.inner {
-                let fields = members
-                    .iter()
-                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
-                    .collect();
-                return (fields, *span);
-            }
+        if ty.name.as_deref() != Some(name) {
+            continue;
+        }
+        if let TypeInner::Struct { members, span } = &ty.inner {
+            let fields = members
+                .iter()
+                .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                .collect();
+            return (fields, *span);
         }
     }
     panic!("no struct {name} in the module");
@@ -60,7 +64,7 @@ macro_rules! rust_layout {
     };
 }
 
-fn expected() -> [(&'static str, (Vec<(String, u32)>, u32)); 3] {
+fn expected() -> [(&'static str, Layout); 3] {
     [
         (
             "Material",
