@@ -111,11 +111,13 @@ float phong_specular(uint gate, uint normalization, float nl, float nv, float lv
     return lobe * gate_weight(gate, nl);
 }
 
-// Blinn-Phong: (N.H)^2 = max(N.L + N.V, 0)^2 / (2 + 2 L.V), raised to s/2.
-float blinn_specular(uint gate, uint normalization, float nl, float nv, float lv, float s) {
-    float t = max(nl + nv, 0.0);
-    float den = 2.0 + 2.0 * lv;
-    float nh2 = den > 1e-12 ? min(t * t / den, 1.0) : 0.0;
+// Blinn-Phong: (N.H)^2 = max(N.(L+V), 0)^2 / |L+V|^2, raised to s/2. Computed from the vector
+// L + V (not from 2 + 2 L.V, which cancels as L -> -V), exactly as the crate's Incidence::new.
+float blinn_specular(uint gate, uint normalization, vec3 n, vec3 l, vec3 v, float nl, float s) {
+    vec3 sum = l + v;
+    float t = max(dot(n, sum), 0.0);
+    float den = dot(sum, sum);
+    float nh2 = den >= F32_MIN_POSITIVE ? min(t * t / den, 1.0) : 0.0;
     float lobe = lobe_pow(nh2, 0.5 * s);
     if (normalization == 1u) {
         return min((max(s, 0.0) + 8.0) * (1.0 / (8.0 * PI)), F32_MAX) * lobe * max(nl, 0.0);
@@ -198,7 +200,7 @@ Terms shade_point(vec3 position, vec3 normal) {
         if (specular_on) {
             float spec_lobe = params.model == 1u
                 ? phong_specular(params.gate, params.normalization, nl, nv, lv, material.shininess)
-                : blinn_specular(params.gate, params.normalization, nl, nv, lv, material.shininess);
+                : blinn_specular(params.gate, params.normalization, n, l, v, nl, material.shininess);
             float ws = min(f * spec_lobe, F32_MAX);
             specular += min(min(light.specular * material.specular, sat) * ws, sat);
         }

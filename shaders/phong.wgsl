@@ -101,11 +101,13 @@ fn phong_specular(p: Params, nl: f32, nv: f32, lv: f32, s: f32) -> f32 {
     return lobe * gate_weight(p.gate, nl);
 }
 
-// Blinn-Phong: (N.H)^2 = max(N.L + N.V, 0)^2 / (2 + 2 L.V), raised to s/2.
-fn blinn_specular(p: Params, nl: f32, nv: f32, lv: f32, s: f32) -> f32 {
-    let t = max(nl + nv, 0.0);
-    let den = 2.0 + 2.0 * lv;
-    let nh2 = select(0.0, min(t * t / den, 1.0), den > 1e-12);
+// Blinn-Phong: (N.H)^2 = max(N.(L+V), 0)^2 / |L+V|^2, raised to s/2. Computed from the vector
+// L + V (not from 2 + 2 L.V, which cancels as L -> -V), exactly as the crate's Incidence::new.
+fn blinn_specular(p: Params, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, nl: f32, s: f32) -> f32 {
+    let sum = l + v;
+    let t = max(dot(n, sum), 0.0);
+    let den = dot(sum, sum);
+    let nh2 = select(0.0, min(t * t / den, 1.0), den >= F32_MIN_POSITIVE);
     let lobe = lobe_pow(nh2, 0.5 * s);
     if (p.normalization == 1u) {
         return min((max(s, 0.0) + 8.0) * (1.0 / (8.0 * PI)), F32_MAX) * lobe * max(nl, 0.0);
@@ -194,7 +196,7 @@ fn shade_point(p: Params, m: Material, position: vec3<f32>, normal: vec3<f32>) -
             if (p.model == 1u) {
                 spec_lobe = phong_specular(p, nl, nv, lv, m.shininess);
             } else {
-                spec_lobe = blinn_specular(p, nl, nv, lv, m.shininess);
+                spec_lobe = blinn_specular(p, n, l, v, nl, m.shininess);
             }
             let ws = min(f * spec_lobe, F32_MAX);
             specular += min(min(light.specular * m.specular, sat) * ws, sat);

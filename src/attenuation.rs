@@ -212,7 +212,7 @@ impl Attenuation {
     /// assert_eq!(u.factor(10.0), 0.0);
     /// ```
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn factor(&self, d: f32) -> f32 {
         let d = math::clamp_or_lo(d, 0.0, math::MAX);
         let f = match *self {
@@ -224,7 +224,7 @@ impl Attenuation {
             } => {
                 // Horner form: no ∞·0 for any finite d, so no NaN.
                 let den = constant + d * (linear + quadratic * d);
-                1.0 / den.max(Self::MIN_DENOMINATOR)
+                1.0 / math::max_or(den, Self::MIN_DENOMINATOR)
             }
             Attenuation::InverseSquare {
                 power,

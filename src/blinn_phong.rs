@@ -55,7 +55,7 @@ impl ReflectionModel for BlinnPhong {
     fn specular(&self, g: &Incidence, s: f32) -> f32 {
         let lobe = self.pow.lobe(g.n_dot_h_squared(), 0.5 * s);
         if self.normalization.is_normalized() {
-            self.normalization.blinn_factor(s) * lobe * g.n_dot_l.max(0.0)
+            self.normalization.blinn_factor(s) * lobe * crate::math::max_or(g.n_dot_l, 0.0)
         } else {
             lobe * self.gate.weight(g.n_dot_l)
         }

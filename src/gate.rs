@@ -43,7 +43,7 @@ impl SpecularGate {
                     0.0
                 }
             }
-            SpecularGate::Cosine => n_dot_l.max(0.0),
+            SpecularGate::Cosine => crate::math::max_or(n_dot_l, 0.0),
             SpecularGate::None => 1.0,
         }
     }

@@ -56,11 +56,11 @@ impl Incidence {
         debug_assert!(unit_or_zero(l), "Incidence::new: l must be unit, got {l}");
         debug_assert!(unit_or_zero(v), "Incidence::new: v must be unit, got {v}");
         let sum = l + v;
-        let t = n.dot(sum).max(0.0);
+        let t = crate::math::max_or(n.dot(sum), 0.0);
         let d = sum.length_squared();
         // ‖L+V‖² below the smallest normal f32 means L = −V to within 1e-19: no halfway vector.
         let n_dot_h_sq = if d >= f32::MIN_POSITIVE {
-            (t * t / d).min(1.0)
+            crate::math::min_or(t * t / d, 1.0)
         } else {
             0.0
         };
@@ -117,7 +117,10 @@ impl Incidence {
     #[must_use]
     #[inline]
     pub fn r_dot_v(&self) -> f32 {
-        (2.0 * self.n_dot_l * self.n_dot_v - self.l_dot_v).clamp(-1.0, 1.0)
+        crate::math::min_or(
+            crate::math::max_or(2.0 * self.n_dot_l * self.n_dot_v - self.l_dot_v, -1.0),
+            1.0,
+        )
     }
 
     /// Blinn's `(N·H)²`: the field [`n_dot_h_sq`](Self::n_dot_h_sq), clamped to `[0, 1]`.

@@ -72,9 +72,24 @@ pub(crate) fn abs(x: f32) -> f32 {
 /// The largest finite magnitude, used to saturate results that would overflow.
 pub(crate) const MAX: f32 = f32::MAX;
 
+/// `max(x, lo)` that maps NaN to `lo`, in one `maxss`.
+///
+/// `f32::max` implements IEEE maxNum, which costs a NaN test and a blend on x86; this
+/// compare-and-select is the machine's own `max` and gives the same answer for every non-NaN `x`.
+/// The shading loop runs a dozen of these per light, so the difference is measurable.
+#[inline(always)]
+pub(crate) fn max_or(x: f32, lo: f32) -> f32 {
+    if x > lo { x } else { lo }
+}
+
+/// `min(x, hi)` that maps NaN to `hi`, in one `minss` (see [`max_or`]).
+#[inline(always)]
+pub(crate) fn min_or(x: f32, hi: f32) -> f32 {
+    if x < hi { x } else { hi }
+}
+
 /// Clamps to `[lo, hi]`, mapping NaN to `lo`. Used on the total paths so no NaN escapes.
 #[inline(always)]
 pub(crate) fn clamp_or_lo(x: f32, lo: f32, hi: f32) -> f32 {
-    // `f32::max` returns the non-NaN operand, so NaN becomes `lo` here.
-    x.max(lo).min(hi)
+    min_or(max_or(x, lo), hi)
 }

@@ -39,7 +39,7 @@ impl Normalization {
     #[must_use]
     #[inline]
     pub fn diffuse(self, n_dot_l: f32) -> f32 {
-        let c = n_dot_l.max(0.0);
+        let c = math::max_or(n_dot_l, 0.0);
         match self {
             Normalization::None => c,
             _ => c * (1.0 / PI),

@@ -54,12 +54,20 @@ fn rescaled(v: Vec3) -> Vec3 {
 /// assert_eq!(phong::normalize_or_zero(Vec3::new(3e38, 0.0, 0.0)), Vec3::X);
 /// ```
 #[must_use]
-#[inline]
+#[inline(always)]
 pub fn normalize_or_zero(v: Vec3) -> Vec3 {
     let l2 = v.length_squared();
     if (LO..=HI).contains(&l2) {
         return v * (1.0 / math::sqrt(l2));
     }
+    normalize_rare(v)
+}
+
+/// The rare cases of [`normalize_or_zero`], kept out of line so the common path stays small
+/// enough to inline into shading loops.
+#[cold]
+#[inline(never)]
+fn normalize_rare(v: Vec3) -> Vec3 {
     if !v.is_finite() || v == Vec3::ZERO {
         return Vec3::ZERO;
     }
@@ -93,12 +101,19 @@ pub fn try_normalize(v: Vec3) -> Option<Vec3> {
 /// assert_eq!(phong::length(Vec3::new(3e-30, 4e-30, 0.0)), 5e-30);
 /// ```
 #[must_use]
-#[inline]
+#[inline(always)]
 pub fn length(v: Vec3) -> f32 {
     let l2 = v.length_squared();
     if (LO..=HI).contains(&l2) {
         return math::sqrt(l2);
     }
+    length_rare(v)
+}
+
+/// The rare cases of [`length`], out of line like [`normalize_rare`].
+#[cold]
+#[inline(never)]
+fn length_rare(v: Vec3) -> f32 {
     if v.is_nan() {
         return 0.0;
     }
@@ -129,14 +144,14 @@ pub(crate) fn sub_saturating(a: Vec3, b: Vec3) -> Vec3 {
 /// The unit direction of `v` and its length, sharing one square root on the common path.
 ///
 /// Returns `(0, 0)` for the zero vector; the length saturates as in [`length`].
-#[inline]
+#[inline(always)]
 pub(crate) fn direction_and_length(v: Vec3) -> (Vec3, f32) {
     let l2 = v.length_squared();
     if (LO..=HI).contains(&l2) {
         let d = math::sqrt(l2);
         return (v * (1.0 / d), d);
     }
-    (normalize_or_zero(v), length(v))
+    (normalize_rare(v), length_rare(v))
 }
 
 #[cfg(test)]

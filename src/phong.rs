@@ -61,7 +61,7 @@ impl ReflectionModel for Phong {
     fn specular(&self, g: &Incidence, s: f32) -> f32 {
         let lobe = self.pow.lobe(g.r_dot_v(), s);
         if self.normalization.is_normalized() {
-            self.normalization.phong_factor(s) * lobe * g.n_dot_l.max(0.0)
+            self.normalization.phong_factor(s) * lobe * crate::math::max_or(g.n_dot_l, 0.0)
         } else {
             lobe * self.gate.weight(g.n_dot_l)
         }

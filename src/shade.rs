@@ -143,10 +143,10 @@ pub fn shade<M: ReflectionModel, L: LightSource>(
         let g = Incidence::new(n, sample.direction, v);
         // Scalar weights first: finite × finite never gives NaN, and every colour is ≥ 0, so the
         // sums below can overflow to +∞ (saturated at the end) but never produce NaN.
-        let wd = (f * model.diffuse(&g)).min(math::MAX);
+        let wd = math::min_or(f * model.diffuse(&g), math::MAX);
         diffuse += ((colors.diffuse() * material.diffuse()).min(sat) * wd).min(sat);
         if specular_on {
-            let ws = (f * model.specular(&g, s)).min(math::MAX);
+            let ws = math::min_or(f * model.specular(&g, s), math::MAX);
             specular += ((colors.specular() * material.specular()).min(sat) * ws).min(sat);
         }
     }
