@@ -422,7 +422,8 @@ fn halfway_section(o: &mut String) {
          lobe table above as the adversarial domain \"L, V nearly opposite\"; before the fix its \
          absolute error for `Incidence::n_dot_h_squared` and `BlinnPhong specular` reached 1.0. \
          Phong's `R·V = 2(N·L)(N·V) − L·V` has no such cancellation (both terms are positive \
-         there). The batch kernels still use the cosine form (see docs/performance.md).\n\n",
+         there). The batch kernels use the cosine form only where `2 + 2 L·V ≥ 1e-2` and hand \
+         the rare lanes below that to the scalar path.\n\n",
     );
 }
 

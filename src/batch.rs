@@ -33,7 +33,9 @@
 //! [`shade`](crate::shade) to a few `f32` ulps of the terms it sums, plus the pow strategy's error.
 //! Degenerate points (zero normal, viewer or light at the point, coordinates so large that a
 //! squared norm leaves `[1e-30, 1e30]`) are shaded by [`shade`](crate::shade) itself, so their
-//! documented results hold exactly. From finite input no NaN is produced.
+//! documented results hold exactly. So are Blinn-Phong lanes with `2 + 2 L·V < 1e-2` (light and
+//! viewer nearly opposite, e.g. a grazing glint), where the kernels' cosine form of `(N·H)²`
+//! would lose its digits. From finite input no NaN is produced.
 
 #[cfg(target_arch = "x86_64")]
 mod avx512;

@@ -676,3 +676,43 @@ fn reference(blinn: bool, s: f64, light: Vec3, eye: Vec3, p: Vec3, n: Vec3) -> D
     let k = DVec3::new(1.0, 0.5, 0.31);
     f * (0.2 * k + 0.5 * k * nl.max(0.0) + 0.5 * spec)
 }
+
+#[test]
+fn blinn_keeps_the_grazing_mirror_glint_at_every_level() {
+    // A sun ε above the horizon and a viewer ε above it on the other side: H = N exactly, so the
+    // Blinn-Phong lobe is 1 for every s. The cosine form (N·L + N·V)²/(2 + 2 L·V) loses it once
+    // 2 + 2 L·V ≈ 4ε² is below f32's resolution of L·V; the kernels send such lanes to the scalar
+    // path, whose (N·H)² comes from L + V. 16 + 3 points, so both full chunks and the tail run.
+    let mut p = Vec::new();
+    let mut n = Vec::new();
+    let eps = [1e-2f32, 3e-3, 1e-3, 1e-4, 1e-5];
+    for i in 0..19 {
+        p.push(Vec3::new(i as f32 * 0.1, 0.0, 0.0));
+        n.push(Vec3::Z);
+    }
+    let b = Batch { p, n };
+    let m = Material::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE, 64.0).unwrap();
+    for &e in &eps {
+        let sun = DirectionalLight::try_new(
+            Vec3::new(e.cos(), 0.0, e.sin()),
+            LightColors::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE).unwrap(),
+        )
+        .unwrap();
+        let scene = Scene {
+            lights: &[sun],
+            ambient: Vec3::ZERO,
+            viewer: Viewer::Infinite(Vec3::new(-e.cos(), 0.0, e.sin())),
+        };
+        for level in Level::supported() {
+            let out = run(level, &BlinnPhong::default(), &m, &scene, &b);
+            for (i, c) in out.iter().enumerate() {
+                // (N·H)² within a few ulps of 1, raised to s/2 = 32: error ≤ 32 · 4 · 2⁻²⁴.
+                assert!(
+                    (c.x - 1.0).abs() < 1e-5,
+                    "{} ε = {e:e}, point {i}: Blinn-Phong glint {c}, want 1",
+                    level.name()
+                );
+            }
+        }
+    }
+}

@@ -411,6 +411,11 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8>(
                             let s = _mm512_max_ps(_mm512_add_ps(nl, nv), zero);
                             let den = _mm512_fmadd_ps(splat(2.0), lv, splat(2.0));
                             let okd = _mm512_cmp_ps_mask::<_CMP_GT_OQ>(den, splat(1e-12));
+                            // Lanes near L = −V go to the scalar path (see kernel::BLINN_DEN_MIN).
+                            ok &= _mm512_cmp_ps_mask::<_CMP_GE_OQ>(
+                                den,
+                                splat(super::kernel::BLINN_DEN_MIN),
+                            );
                             let q =
                                 _mm512_min_ps(_mm512_div_ps(_mm512_mul_ps(s, s), den), splat(1.0));
                             _mm512_maskz_mov_ps(okd, q)
