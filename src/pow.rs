@@ -82,12 +82,9 @@ pub enum PowStrategy {
     /// `x^⌊s⌋` by repeated squaring times `x^{s−⌊s⌋}` by [`Poly5`](Self::Poly5). Max relative error
     /// 2e-5.
     SplitPoly5,
-    /// The cheapest strategy that keeps 8-bit output exact, for where it runs. In the batch
-    /// kernels that is [`PowStrategy::cheapest_for_8bit`] of the exponent (squaring or a
-    /// polynomial: they vectorise, `powf` does not). In scalar code with `std` it is
-    /// [`Exact`](Self::Exact): the platform's `powf` is a short branch-free routine there, cheaper
-    /// than a squaring loop (measured with callgrind: ~20 instructions against ~50 for `s = 32`).
-    /// The error is the chosen strategy's (at most 3e-5 relative).
+    /// [`PowStrategy::cheapest_for_8bit`] of the exponent, chosen per call: the error is the
+    /// chosen strategy's (at most 3e-5 relative). (Resolving it to `powf` in scalar code was
+    /// tried: fewer instructions, but slower in the criterion benches, 5% for Phong.)
     Auto,
 }
 
@@ -201,12 +198,7 @@ impl PowStrategy {
     #[must_use]
     #[inline(always)]
     pub fn lobe(self, x: f32, s: f32) -> f32 {
-        let strategy = match self {
-            #[cfg(feature = "std")]
-            PowStrategy::Auto => PowStrategy::Exact,
-            other => other.resolve(s),
-        };
-        match strategy {
+        match self.resolve(s) {
             PowStrategy::Exact => lobe_pow(x, s),
             PowStrategy::Squaring => lobe_pow_squaring(x, s),
             other => {
