@@ -25,58 +25,9 @@ use phong::{
     SoaRgb, SoaVec3, Viewer,
 };
 
-const LIGHT_POS: Vec3 = Vec3::new(1.2, 1.0, 2.0);
-const VIEW_POS: Vec3 = Vec3::new(0.0, 0.0, 3.0);
-const ATT: (f32, f32, f32) = (1.0, 0.09, 0.032);
-const LA: Vec3 = Vec3::splat(0.2);
-const LD: Vec3 = Vec3::splat(0.5);
-const LS: Vec3 = Vec3::splat(1.0);
-const KA: Vec3 = Vec3::new(1.0, 0.5, 0.31);
-const KD: Vec3 = Vec3::new(1.0, 0.5, 0.31);
-const KS: Vec3 = Vec3::splat(0.5);
-
-/// splitmix64: a small deterministic generator, so every run shades the same points.
-struct Rng(u64);
-impl Rng {
-    fn next_f32(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next_f32()
-    }
-}
-
-/// Random positions in a 4-unit box around the origin and random unit normals.
-fn points(n: usize) -> (Vec<Vec3>, Vec<Vec3>) {
-    let mut rng = Rng(0x5eed);
-    let mut p = Vec::with_capacity(n);
-    let mut nn = Vec::with_capacity(n);
-    for _ in 0..n {
-        p.push(Vec3::new(
-            rng.range(-2.0, 2.0),
-            rng.range(-2.0, 2.0),
-            rng.range(-2.0, 2.0),
-        ));
-        let v = loop {
-            let v = Vec3::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-            );
-            let l = v.length_squared();
-            if l > 1e-4 && l <= 1.0 {
-                break v.normalize();
-            }
-        };
-        nn.push(v);
-    }
-    (p, nn)
-}
+#[path = "support/bench_scene.rs"]
+mod bench_scene;
+use bench_scene::*;
 
 /// Nine structure-of-arrays slices carved from one buffer at staggered offsets, so no two arrays
 /// start at the same offset within a 4 KiB page (PERF-NOTES: same-offset arrays cost 1.5×).
@@ -226,7 +177,7 @@ fn assert_close(what: &str, a: Vec3, b: Vec3, i: usize) {
 }
 
 fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
-    let (p, nn) = points(n);
+    let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
     let scene = Scene {
         lights: &lights,
@@ -320,7 +271,7 @@ fn blinn_1m(c: &mut Criterion) {
 /// Every pow strategy in the batch path, both models, at s = 32 and s = 20.5 (N = 4096).
 fn pow_4096(c: &mut Criterion) {
     let n = 4096;
-    let (p, nn) = points(n);
+    let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
     let scene = Scene {
         lights: &lights,
@@ -353,7 +304,7 @@ fn pow_4096(c: &mut Criterion) {
 /// The batch path forced to each dispatch level this CPU runs (N = 4096, s = 32 and 20.5).
 fn levels_4096(c: &mut Criterion) {
     let n = 4096;
-    let (p, nn) = points(n);
+    let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
     let scene = Scene {
         lights: &lights,
