@@ -13,20 +13,22 @@ use phong::{
 /// Relative size of one f32 ulp at 1: `x` and a correctly rounded `y` differ by at most ULP·|y|.
 const ULP: f32 = f32::EPSILON;
 
+/// `got` within `ulps` ulps (relative to the larger magnitude) of `want`: approx's relative test
+/// with no absolute slack, so an expected exact value must come out exact.
 fn close(got: f32, want: f32, ulps: f32, what: &str) {
     assert!(
-        (got - want).abs() <= ulps * ULP * want.abs(),
+        approx::relative_eq!(got, want, epsilon = 0.0, max_relative = ulps * ULP),
         "{what}: got {got}, want {want} (±{ulps} ulp)"
     );
 }
 
+/// Every component within `ulps` ulps of the largest expected component (approx's absolute test
+/// on glam vectors, with the tolerance scaled to the vector).
 fn close_vec(got: Vec3, want: Vec3, ulps: f32, what: &str) {
-    for i in 0..3 {
-        assert!(
-            (got[i] - want[i]).abs() <= ulps * ULP * want.abs().max_element(),
-            "{what}: got {got}, want {want} (±{ulps} ulp, component {i})"
-        );
-    }
+    assert!(
+        approx::abs_diff_eq!(got, want, epsilon = ulps * ULP * want.abs().max_element()),
+        "{what}: got {got}, want {want} (±{ulps} ulp of the largest component)"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
