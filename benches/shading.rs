@@ -119,6 +119,22 @@ fn light() -> PointLight {
     .unwrap()
 }
 
+/// The benches' scene around `lights`: no scene ambient, the viewer at `VIEW_POS`.
+fn scene(lights: &[PointLight]) -> Scene<'_, PointLight> {
+    Scene {
+        lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(VIEW_POS),
+    }
+}
+
+/// The points as staggered SoA arrays for the batch path.
+fn soa_of(p: &[Vec3], nn: &[Vec3]) -> Soa {
+    let mut soa = Soa::new(p.len());
+    soa.fill(p, nn);
+    soa
+}
+
 fn material(shininess: f32) -> Material {
     Material::try_new(KA, KD, KS, shininess).unwrap()
 }
@@ -179,14 +195,9 @@ fn assert_close(what: &str, a: Vec3, b: Vec3, i: usize) {
 fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
     let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
-    let scene = Scene {
-        lights: &lights,
-        ambient: Vec3::ZERO,
-        viewer: Viewer::At(VIEW_POS),
-    };
+    let scene = scene(&lights);
     let (m32, m20) = (material(32.0), material(20.5));
-    let mut soa = Soa::new(n);
-    soa.fill(&p, &nn);
+    let mut soa = soa_of(&p, &nn);
     let mut naive = vec![Vec3::ZERO; n];
     let mut scalar = vec![Vec3::ZERO; n];
     let level = Level::detect();
@@ -273,13 +284,8 @@ fn pow_4096(c: &mut Criterion) {
     let n = 4096;
     let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
-    let scene = Scene {
-        lights: &lights,
-        ambient: Vec3::ZERO,
-        viewer: Viewer::At(VIEW_POS),
-    };
-    let mut soa = Soa::new(n);
-    soa.fill(&p, &nn);
+    let scene = scene(&lights);
+    let mut soa = soa_of(&p, &nn);
     let level = Level::detect();
     let mut g = c.benchmark_group("pow_4096");
     g.throughput(Throughput::Elements(n as u64))
@@ -306,13 +312,8 @@ fn levels_4096(c: &mut Criterion) {
     let n = 4096;
     let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
-    let scene = Scene {
-        lights: &lights,
-        ambient: Vec3::ZERO,
-        viewer: Viewer::At(VIEW_POS),
-    };
-    let mut soa = Soa::new(n);
-    soa.fill(&p, &nn);
+    let scene = scene(&lights);
+    let mut soa = soa_of(&p, &nn);
     let mut g = c.benchmark_group("levels_4096");
     g.throughput(Throughput::Elements(n as u64))
         .warm_up_time(Duration::from_millis(300))
