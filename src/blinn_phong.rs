@@ -60,4 +60,9 @@ impl ReflectionModel for BlinnPhong {
             lobe * self.gate.weight(g.n_dot_l)
         }
     }
+
+    #[inline]
+    fn resolve(&self) -> Option<crate::ResolvedModel> {
+        Some((*self).into())
+    }
 }

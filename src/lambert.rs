@@ -37,4 +37,9 @@ impl ReflectionModel for Lambert {
     fn specular(&self, _g: &Incidence, _shininess: f32) -> f32 {
         0.0
     }
+
+    #[inline]
+    fn resolve(&self) -> Option<crate::ResolvedModel> {
+        Some((*self).into())
+    }
 }

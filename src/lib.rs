@@ -105,12 +105,17 @@ mod normalize;
 mod phong;
 mod pow;
 mod reflect;
+mod resolved_model;
 #[cfg(feature = "serde")]
 mod serde_validation;
 mod shade;
+mod shader;
 mod shading_rate;
+mod surface;
+mod terms;
 mod triangle;
 mod vertex_normals;
+mod visibility;
 
 pub use attenuation::Attenuation;
 pub use batch::{
@@ -138,10 +143,15 @@ pub use normalize::{length, normalize_or_zero, try_normalize};
 pub use phong::Phong;
 pub use pow::PowStrategy;
 pub use reflect::reflect;
-pub use shade::{Scene, Terms, Viewer, shade};
+pub use resolved_model::ResolvedModel;
+pub use shade::{Scene, Viewer, shade};
+pub use shader::Shader;
 pub use shading_rate::{gouraud_error_bound, gouraud_within_tolerance};
+pub use surface::Surface;
+pub use terms::Terms;
 pub use triangle::{triangle_area_normal, triangle_normal, try_triangle_normal};
 pub use vertex_normals::vertex_normals;
+pub use visibility::{Unshadowed, Visibility, VisibilityFn};
 
 // The README's Rust examples compile and run as doctests.
 #[doc = include_str!("../README.md")]

@@ -1,6 +1,7 @@
 //! The `ReflectionModel` trait: one question, how strong are the two lobes at a point.
 
 use crate::incidence::Incidence;
+use crate::resolved_model::ResolvedModel;
 use crate::{BlinnPhong, Lambert, Phong};
 
 /// A reflection model of the Phong family: the diffuse and specular lobes at a point.
@@ -25,6 +26,19 @@ pub trait ReflectionModel {
 
     /// The specular lobe for shininess `s`, including this model's gate.
     fn specular(&self, g: &Incidence, shininess: f32) -> f32;
+
+    /// The model's resolved description, for the crate's own models; `None` (the default) for
+    /// models defined elsewhere.
+    ///
+    /// [`shade`](crate::shade) and [`Shader`](crate::Shader) evaluate a model that resolves with
+    /// straight-line code on cosines formed once per light; a model that returns `None` is
+    /// evaluated through [`diffuse`](Self::diffuse) and [`specular`](Self::specular) on an
+    /// [`Incidence`], which gives the same numbers for the built-in models at a higher cost. A
+    /// model outside this crate must keep the default.
+    #[inline]
+    fn resolve(&self) -> Option<ResolvedModel> {
+        None
+    }
 }
 
 /// A reflection model chosen at run time (from a UI or a scene file).
@@ -57,6 +71,28 @@ impl ReflectionModel for Model {
             Model::Phong(m) => m.specular(g, shininess),
             Model::BlinnPhong(m) => m.specular(g, shininess),
         }
+    }
+    #[inline]
+    fn resolve(&self) -> Option<ResolvedModel> {
+        Some((*self).into())
+    }
+}
+
+/// A reference to a model is the model: this lets [`Shader::new`](crate::Shader::new) take a model
+/// by value or by reference.
+impl<M: ReflectionModel + ?Sized> ReflectionModel for &M {
+    const HAS_SPECULAR: bool = M::HAS_SPECULAR;
+    #[inline(always)]
+    fn diffuse(&self, g: &Incidence) -> f32 {
+        (**self).diffuse(g)
+    }
+    #[inline(always)]
+    fn specular(&self, g: &Incidence, shininess: f32) -> f32 {
+        (**self).specular(g, shininess)
+    }
+    #[inline(always)]
+    fn resolve(&self) -> Option<ResolvedModel> {
+        (**self).resolve()
     }
 }
 

@@ -66,4 +66,9 @@ impl ReflectionModel for Phong {
             lobe * self.gate.weight(g.n_dot_l)
         }
     }
+
+    #[inline]
+    fn resolve(&self) -> Option<crate::ResolvedModel> {
+        Some((*self).into())
+    }
 }

@@ -2,13 +2,11 @@
 
 use glam::Vec3;
 
-use crate::incidence::Incidence;
-use crate::light::{LightSource, sanitize_colour};
+use crate::light::LightSource;
 use crate::material::Material;
-use crate::math;
 use crate::model::ReflectionModel;
-use crate::normalize::sub_saturating;
-use crate::normalize_or_zero;
+use crate::shader::Shader;
+use crate::terms::Terms;
 
 /// Where the viewer is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,6 +17,29 @@ pub enum Viewer {
     /// A viewer infinitely far away in this direction (from the surface toward the viewer); `V` is
     /// the same everywhere (OpenGL's non-local viewer). Normalised on use.
     Infinite(Vec3),
+}
+
+impl Viewer {
+    /// The viewer of a ray tracer's hit: infinitely far back along the ray, so `V = −ray_direction`.
+    ///
+    /// ```text
+    /// along_ray(d) = Infinite(−d)
+    /// ```
+    ///
+    /// A ray tracer knows, at each hit, the direction the ray travelled (from the eye or the
+    /// previous bounce toward the surface); the direction to the viewer is its opposite, the same
+    /// for every light. **Domain:** any finite `d`, any length; a zero `d` means no viewer direction
+    /// and so no specular.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// assert_eq!(phong::Viewer::along_ray(Vec3::new(0.0, 0.0, -2.0)), phong::Viewer::Infinite(Vec3::new(0.0, 0.0, 2.0)));
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn along_ray(ray_direction: Vec3) -> Self {
+        Viewer::Infinite(-ray_direction)
+    }
 }
 
 /// The lights and global state a point is shaded under.
@@ -32,33 +53,6 @@ pub struct Scene<'a, L> {
     pub ambient: Vec3,
     /// Where the viewer is.
     pub viewer: Viewer,
-}
-
-/// The four terms of the Phong-family equation at one point, kept apart.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Terms {
-    /// `Ka ⊙ (Ia + Σ La·f)`
-    pub ambient: Vec3,
-    /// `Σ f · Kd ⊙ Ld · diffuse lobe`
-    pub diffuse: Vec3,
-    /// `Σ f · Ks ⊙ Ls · specular lobe`
-    pub specular: Vec3,
-    /// `Ke`
-    pub emission: Vec3,
-}
-
-impl Terms {
-    /// The sum of the four terms, saturated at `f32::MAX` per channel.
-    ///
-    /// ```text
-    /// total = ambient + diffuse + specular + emission
-    /// ```
-    #[must_use]
-    #[inline]
-    pub fn total(&self) -> Vec3 {
-        (self.ambient + self.diffuse + self.specular + self.emission).min(Vec3::splat(math::MAX))
-    }
 }
 
 /// Shades one surface point under every light of a scene: the Phong-family equation.
@@ -89,7 +83,10 @@ impl Terms {
 /// - overflow: each channel saturates at `f32::MAX`.
 ///
 /// The compiler specialises this on `M` and `L`: [`Lambert`](crate::Lambert) does no specular work,
-/// a [`DirectionalLight`](crate::DirectionalLight) no distance or attenuation work.
+/// a [`DirectionalLight`](crate::DirectionalLight) no distance or attenuation work. This is
+/// `Shader::new(model, material, scene).shade(position, normal)`: to shade many points under one
+/// material build the [`Shader`] once; for shadows and per-point materials see its
+/// [`shade_visible`](Shader::shade_visible) and [`shade_surface`](Shader::shade_surface).
 ///
 /// ```
 /// use glam::Vec3;
@@ -116,44 +113,5 @@ pub fn shade<M: ReflectionModel, L: LightSource>(
     position: Vec3,
     normal: Vec3,
 ) -> Terms {
-    let sat = Vec3::splat(math::MAX);
-    let n = normalize_or_zero(normal);
-    let v = match scene.viewer {
-        Viewer::At(eye) => normalize_or_zero(sub_saturating(eye, position)),
-        Viewer::Infinite(dir) => normalize_or_zero(dir),
-    };
-    let s = material.shininess();
-    let lit = n != Vec3::ZERO;
-    let specular_on = M::HAS_SPECULAR && lit && v != Vec3::ZERO;
-
-    let mut ambient_light = sanitize_colour(scene.ambient);
-    let mut diffuse = Vec3::ZERO;
-    let mut specular = Vec3::ZERO;
-    for light in scene.lights {
-        let sample = light.sample(position);
-        let f = sample.factor;
-        if f == 0.0 {
-            continue;
-        }
-        let colors = light.colors();
-        ambient_light += (colors.ambient() * f).min(sat);
-        if !lit || sample.direction == Vec3::ZERO {
-            continue;
-        }
-        let g = Incidence::new(n, sample.direction, v);
-        // Scalar weights first: finite × finite never gives NaN, and every colour is ≥ 0, so the
-        // sums below can overflow to +∞ (saturated at the end) but never produce NaN.
-        let wd = math::min_or(f * model.diffuse(&g), math::MAX);
-        diffuse += ((colors.diffuse() * material.diffuse()).min(sat) * wd).min(sat);
-        if specular_on {
-            let ws = math::min_or(f * model.specular(&g, s), math::MAX);
-            specular += ((colors.specular() * material.specular()).min(sat) * ws).min(sat);
-        }
-    }
-    Terms {
-        ambient: (ambient_light.min(sat) * material.ambient()).min(sat),
-        diffuse: diffuse.min(sat),
-        specular: specular.min(sat),
-        emission: material.emission(),
-    }
+    Shader::new(model, material, scene).shade(position, normal)
 }

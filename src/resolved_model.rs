@@ -1,0 +1,169 @@
+//! A built-in model's meaning, resolved once: which lobe, how it is gated, how it is scaled.
+
+use crate::gate::SpecularGate;
+use crate::math;
+use crate::normalization::Normalization;
+use crate::pow::{PowPlan, PowStrategy};
+use crate::{BlinnPhong, Lambert, Model, Phong};
+
+/// Which specular lobe a model has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Lobe {
+    /// No specular lobe ([`Lambert`]).
+    None,
+    /// `max(R·V, 0)^s` with `R·V = 2(N·L)(N·V) − L·V`.
+    Phong,
+    /// `((N·H)²)^(s/2)`.
+    Blinn,
+}
+
+/// One of the crate's models with every choice it makes resolved: the lobe, the gate, the
+/// normalisation and the pow strategy.
+///
+/// ```text
+/// diffuse  = diffuse_scale · max(N·L, 0)
+/// specular = scale(s) · gate(N·L) · base^(k·s)
+///   Lambert:      no specular
+///   Phong:        base = clamp(R·V, 0, 1),  k = 1,    scale = 1 or (s+2)/2π
+///   Blinn-Phong:  base = (N·H)²,            k = 1/2,  scale = 1 or the Blinn factor
+/// gate(c) = step·[c > 0] + cosine·max(c, 0) + none        (exactly one of the three is 1)
+/// ```
+///
+/// A normalised lobe carries its own `max(N·L, 0)`, so its gate is the cosine whatever the model's
+/// [`SpecularGate`] says. [`shade`](crate::shade), [`Shader`](crate::Shader) and the built-in
+/// models' [`ReflectionModel`](crate::ReflectionModel) impls all evaluate this one description, so
+/// the meaning of a model is written once.
+///
+/// Obtained from [`ReflectionModel::resolve`](crate::ReflectionModel::resolve) or `From` a model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ResolvedModel {
+    pub(crate) lobe: Lobe,
+    pub(crate) normalization: Normalization,
+    pub(crate) pow: PowStrategy,
+    /// Gate weights: `step·[N·L > 0] + cosine·max(N·L, 0) + none`.
+    pub(crate) gate: [f32; 3],
+    /// 1, or `1/π` when normalised.
+    pub(crate) diffuse_scale: f32,
+}
+
+impl ResolvedModel {
+    fn new(lobe: Lobe, gate: SpecularGate, normalization: Normalization, pow: PowStrategy) -> Self {
+        let gate = if normalization.is_normalized() {
+            SpecularGate::Cosine
+        } else {
+            gate
+        };
+        ResolvedModel {
+            lobe,
+            normalization,
+            pow,
+            gate: match gate {
+                SpecularGate::Step => [1.0, 0.0, 0.0],
+                SpecularGate::Cosine => [0.0, 1.0, 0.0],
+                SpecularGate::None => [0.0, 0.0, 1.0],
+            },
+            diffuse_scale: normalization.diffuse(1.0),
+        }
+    }
+
+    /// Whether the model has a specular lobe at all.
+    #[must_use]
+    #[inline]
+    pub fn has_specular(&self) -> bool {
+        self.lobe != Lobe::None
+    }
+
+    /// The diffuse lobe for `N·L`: `diffuse_scale · max(N·L, 0)`, in `[0, 1]`.
+    #[must_use]
+    #[inline(always)]
+    pub fn diffuse(&self, n_dot_l: f32) -> f32 {
+        self.diffuse_scale * math::max_or(n_dot_l, 0.0)
+    }
+
+    /// The gate's weight for `N·L`: `[N·L > 0]`, `max(N·L, 0)` or 1 (the cosine for normalised
+    /// lobes). In `[0, 1]` for `N·L ≤ 1`; NaN reads as 0 for the step and cosine gates.
+    #[must_use]
+    #[inline(always)]
+    pub fn gate(&self, n_dot_l: f32) -> f32 {
+        let [step, cosine, none] = self.gate;
+        let lit = if n_dot_l > 0.0 { step } else { 0.0 };
+        lit + cosine * math::max_or(n_dot_l, 0.0) + none
+    }
+
+    /// The per-shininess constants: the normalisation factor and the pow plan for the exponent
+    /// applied to the lobe's base (`s` for Phong, `s/2` for Blinn-Phong's `(N·H)²`).
+    ///
+    /// **Domain:** any `s`; NaN and negatives are read as 0, `+∞` as `f32::MAX`.
+    #[must_use]
+    #[inline]
+    pub(crate) fn at_shininess(&self, s: f32) -> SpecularPlan {
+        let s = math::clamp_or_lo(s, 0.0, math::MAX);
+        let (scale, exponent) = match self.lobe {
+            Lobe::None => (0.0, 0.0),
+            Lobe::Phong => (self.normalization.phong_factor(s), s),
+            Lobe::Blinn => (self.normalization.blinn_factor(s), 0.5 * s),
+        };
+        SpecularPlan {
+            scale,
+            plan: self.pow.plan(exponent),
+        }
+    }
+
+    /// Phong's lobe base from the cosines: `R·V = 2(N·L)(N·V) − L·V`, unclamped.
+    #[inline(always)]
+    pub(crate) fn phong_base(n_dot_l: f32, n_dot_v: f32, l_dot_v: f32) -> f32 {
+        2.0 * n_dot_l * n_dot_v - l_dot_v
+    }
+}
+
+/// The specular constants of one shininess: the normalisation factor and the pow plan.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SpecularPlan {
+    /// 1, or the normalisation factor at this shininess (finite).
+    pub(crate) scale: f32,
+    pub(crate) plan: PowPlan,
+}
+
+impl SpecularPlan {
+    /// `base^k·s` for a lobe base: `x ≤ 0` or NaN gives 0, `x ≥ 1` gives 1 (so `0^0 = 0`).
+    /// Branch-free in `x`: the plan's evaluation runs on the clamped base and is selected away.
+    #[inline(always)]
+    pub(crate) fn power(&self, x: f32) -> f32 {
+        let b = math::clamp_or_lo(x, 0.0, 1.0);
+        let p = self.plan.eval(b);
+        if x > 0.0 { p } else { 0.0 }
+    }
+}
+
+impl From<Lambert> for ResolvedModel {
+    fn from(m: Lambert) -> Self {
+        ResolvedModel::new(
+            Lobe::None,
+            SpecularGate::None,
+            m.normalization,
+            PowStrategy::Exact,
+        )
+    }
+}
+
+impl From<Phong> for ResolvedModel {
+    fn from(m: Phong) -> Self {
+        ResolvedModel::new(Lobe::Phong, m.gate, m.normalization, m.pow)
+    }
+}
+
+impl From<BlinnPhong> for ResolvedModel {
+    fn from(m: BlinnPhong) -> Self {
+        ResolvedModel::new(Lobe::Blinn, m.gate, m.normalization, m.pow)
+    }
+}
+
+impl From<Model> for ResolvedModel {
+    fn from(m: Model) -> Self {
+        match m {
+            Model::Lambert(m) => m.into(),
+            Model::Phong(m) => m.into(),
+            Model::BlinnPhong(m) => m.into(),
+        }
+    }
+}

@@ -1,0 +1,353 @@
+//! A model, a material and a scene prepared once, then many points shaded one at a time.
+
+use glam::Vec3;
+
+use crate::incidence::Incidence;
+use crate::light::{LightSource, sanitize_colour};
+use crate::material::Material;
+use crate::math;
+use crate::model::ReflectionModel;
+use crate::normalize::sub_saturating;
+use crate::normalize_or_zero;
+use crate::resolved_model::{Lobe, ResolvedModel, SpecularPlan};
+use crate::shade::{Scene, Viewer};
+use crate::surface::Surface;
+use crate::terms::Terms;
+use crate::visibility::{Unshadowed, Visibility};
+
+/// Shades points one at a time under a scene, with everything that depends only on the model, the
+/// material and the scene worked out once in [`new`](Self::new).
+///
+/// ```text
+/// ambient  = Ka ⊙ (Ia + Σᵢ fᵢ·Laᵢ)
+/// diffuse  = Kd ⊙ Σᵢ fᵢ·visᵢ · Ldᵢ · diffuse(Nᐧ Lᵢ)
+/// specular = Ks ⊙ Σᵢ fᵢ·visᵢ · Lsᵢ · specular(N, Lᵢ, V, s)
+/// emission = Ke
+/// ```
+///
+/// `fᵢ` is light `i`'s attenuation × spot factor at the point, `visᵢ` its [`Visibility`] (1 without
+/// shadows), `N = normalize(normal)`, `Lᵢ` the unit direction to the light, `V` the unit direction
+/// to the viewer. This is the equation of [`shade`](crate::shade), which is `Shader::new(…).shade(…)`.
+///
+/// What is prepared: the model's lobe, gate and normalisation (a [`ResolvedModel`]), the pow plan
+/// for the material's shininess (e.g. five squarings for `s = 32` under
+/// [`PowStrategy::Auto`](crate::PowStrategy::Auto)), the sanitised material colours, the scene
+/// ambient, and an infinite viewer's direction. Per point and light what remains is straight-line
+/// arithmetic on cosines: no reflect or halfway vector is built, a Phong model computes no `(N·H)²`,
+/// and rare inputs (zero or huge vectors) leave the common path in one range test per
+/// normalisation.
+///
+/// **Domain:** any finite position and normal (the normal need not be unit); lights, material and
+/// scene as documented on their types. **Degenerate input** is documented on [`shade`](crate::shade)
+/// and holds for every method here: no NaN and no panic from finite input, overflow saturates at
+/// `f32::MAX`.
+///
+/// Cheap to build (a few dozen instructions, no allocation): a ray tracer whose viewer changes with
+/// every ray builds one per hit.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{Attenuation, BlinnPhong, LightColors, Material, PointLight, Scene, Shader, Viewer};
+///
+/// let lamp = PointLight::try_new(
+///     Vec3::new(1.2, 1.0, 2.0),
+///     Attenuation::try_polynomial(1.0, 0.09, 0.032)?,
+///     LightColors::try_from_strengths(Vec3::ONE, 0.1, 1.0, 0.5)?,
+/// )?;
+/// let scene = Scene { lights: &[lamp], ambient: Vec3::ZERO, viewer: Viewer::At(Vec3::new(0.0, 0.0, 3.0)) };
+/// let coral = Material::try_from_color(Vec3::new(1.0, 0.5, 0.31), 32.0)?;
+/// let shader = Shader::new(BlinnPhong::default(), &coral, &scene);
+/// for (p, n) in [(Vec3::ZERO, Vec3::Z), (Vec3::X, Vec3::Y)] {
+///     let rgb = shader.shade(p, n).total();
+///     assert_eq!(rgb, phong::shade(&BlinnPhong::default(), &coral, &scene, p, n).total());
+/// }
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Shader<'a, M, L> {
+    model: M,
+    resolved: Option<ResolvedModel>,
+    lights: &'a [L],
+    ambient_light: Vec3,
+    viewer: Viewer,
+    emission: Vec3,
+    surface: Surface,
+    specular: SpecularPlan,
+}
+
+/// A surface with its specular constants, sanitised, ready for the per-light loop.
+struct Prepared {
+    ka: Vec3,
+    kd: Vec3,
+    ks: Vec3,
+    s: f32,
+    specular: SpecularPlan,
+}
+
+impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
+    /// Prepares `model`, `material` and `scene` for shading many points.
+    ///
+    /// The model is taken by value (the crate's models are small `Copy` types); a reference to a
+    /// model works too, since `&M` is a [`ReflectionModel`] wherever `M` is.
+    ///
+    /// **Domain:** as [`shade`](crate::shade). The scene's ambient light is sanitised (NaN and
+    /// negatives read as 0) and an infinite viewer's direction normalised here.
+    #[must_use]
+    #[inline]
+    pub fn new(model: M, material: &Material, scene: &Scene<'a, L>) -> Self {
+        let resolved = model.resolve();
+        let viewer = match scene.viewer {
+            Viewer::At(eye) => Viewer::At(eye),
+            Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
+        };
+        let surface = Surface::of(material);
+        Shader {
+            model,
+            resolved,
+            lights: scene.lights,
+            ambient_light: sanitize_colour(scene.ambient),
+            viewer,
+            emission: material.emission(),
+            surface,
+            specular: plan_for(resolved, surface.shininess),
+        }
+    }
+
+    /// The four terms at `position` with surface normal `normal`, every light unshadowed.
+    ///
+    /// **Domain:** finite `position` and `normal` (any length). With only directional lights and an
+    /// infinite viewer the position is not used: pass any finite point, e.g. `Vec3::ZERO`.
+    #[must_use]
+    #[inline]
+    pub fn shade(&self, position: Vec3, normal: Vec3) -> Terms {
+        self.shade_visible(position, normal, Unshadowed)
+    }
+
+    /// The four terms with each light's diffuse and specular parts scaled by its visibility
+    /// (shadows); ambient parts are not shadowed.
+    ///
+    /// ```text
+    /// diffuseᵢ, specularᵢ ← clamp(visᵢ, 0, 1) · (diffuseᵢ, specularᵢ)      (NaN reads as 0)
+    /// ```
+    ///
+    /// **Domain:** as [`shade`](Self::shade); visibilities in `[0, 1]` (see [`Visibility`]).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
+    /// let colors = LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE)?;
+    /// let suns = [DirectionalLight::try_new(Vec3::Z, colors)?, DirectionalLight::try_new(Vec3::Y, colors)?];
+    /// let scene = Scene { lights: &suns, ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+    /// let m = Material::try_from_color(Vec3::ONE, 16.0)?;
+    /// let shader = Shader::new(Phong::default(), &m, &scene);
+    /// let (p, n) = (Vec3::ZERO, Vec3::new(0.0, 1.0, 1.0));
+    /// // A shadow on the second light: the result is the first light alone, plus both ambients.
+    /// let shadowed = shader.shade_visible(p, n, [1.0, 0.0]);
+    /// let first = Shader::new(Phong::default(), &m, &Scene { lights: &suns[..1], ..scene }).shade(p, n);
+    /// assert_eq!(shadowed.diffuse, first.diffuse);
+    /// assert_eq!(shadowed.ambient, Vec3::splat(0.2));
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn shade_visible(
+        &self,
+        position: Vec3,
+        normal: Vec3,
+        visibility: impl Visibility,
+    ) -> Terms {
+        let p = Prepared {
+            ka: self.surface.ambient,
+            kd: self.surface.diffuse,
+            ks: self.surface.specular,
+            s: self.surface.shininess,
+            specular: self.specular,
+        };
+        self.run(&p, position, normal, visibility)
+    }
+
+    /// The four terms with a per-point [`Surface`] in place of the material's reflectances and
+    /// shininess (texture maps), and per-light visibility. The material's emission is kept.
+    ///
+    /// Nothing is validated: release builds sanitise the surface (see [`Surface`]) and debug builds
+    /// assert it. The pow plan for the point's shininess is chosen here, per point: one compare for
+    /// [`PowStrategy::Auto`](crate::PowStrategy::Auto) (squaring for a whole exponent, a
+    /// polynomial otherwise).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Surface, Unshadowed, Viewer};
+    /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE)?)?;
+    /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+    /// let base = Material::try_from_color(Vec3::ONE, 16.0)?;
+    /// let shader = Shader::new(Phong::default(), &base, &scene);
+    /// let texel = Surface::textured(Vec3::new(0.5, 0.25, 0.0), Vec3::splat(0.5), 40.0);
+    /// let t = shader.shade_surface(Vec3::ZERO, Vec3::Z, &texel, Unshadowed);
+    /// assert_eq!(t.diffuse, Vec3::new(0.5, 0.25, 0.0));
+    /// assert_eq!(t.specular, Vec3::splat(0.5)); // V = R: the lobe is 1 at any shininess
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn shade_surface(
+        &self,
+        position: Vec3,
+        normal: Vec3,
+        surface: &Surface,
+        visibility: impl Visibility,
+    ) -> Terms {
+        debug_assert!(
+            surface.is_valid(),
+            "Shader::shade_surface: surface outside its domain: {surface:?}"
+        );
+        let s = math::clamp_or_lo(surface.shininess, 0.0, math::MAX);
+        let p = Prepared {
+            ka: sanitize_colour(surface.ambient),
+            kd: sanitize_colour(surface.diffuse),
+            ks: sanitize_colour(surface.specular),
+            s,
+            specular: plan_for(self.resolved, s),
+        };
+        self.run(&p, position, normal, visibility)
+    }
+
+    /// The cosines [`shade`](Self::shade) forms for light `index` at a point, with the light's
+    /// sample: what a debug view or a custom lobe needs. `None` when `index` is out of range.
+    ///
+    /// **Returns** the [`Incidence`] of `N = normalize(normal)`, the unit direction to the light and
+    /// the unit direction to the viewer (each the zero vector where it does not exist: a zero
+    /// normal, the point at the light, the viewer at the point), and the light's
+    /// attenuation × spot factor.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
+    /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::BLACK)?;
+    /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Y) };
+    /// let m = Material::try_from_color(Vec3::ONE, 1.0)?;
+    /// let (g, f) = Shader::new(Phong::default(), &m, &scene).incidence(Vec3::ZERO, Vec3::Z, 0).unwrap();
+    /// assert_eq!((g.n_dot_l, g.n_dot_v, f), (1.0, 0.0, 1.0));
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    pub fn incidence(
+        &self,
+        position: Vec3,
+        normal: Vec3,
+        index: usize,
+    ) -> Option<(Incidence, f32)> {
+        let light = self.lights.get(index)?;
+        let sample = light.sample(position);
+        let n = normalize_or_zero(normal);
+        let v = self.view_direction(position);
+        Some((Incidence::new(n, sample.direction, v), sample.factor))
+    }
+
+    #[inline(always)]
+    fn view_direction(&self, position: Vec3) -> Vec3 {
+        match self.viewer {
+            Viewer::At(eye) => normalize_or_zero(sub_saturating(eye, position)),
+            Viewer::Infinite(dir) => dir,
+        }
+    }
+
+    #[inline(always)]
+    fn run(
+        &self,
+        surface: &Prepared,
+        position: Vec3,
+        normal: Vec3,
+        mut visibility: impl Visibility,
+    ) -> Terms {
+        let n = normalize_or_zero(normal);
+        let v = self.view_direction(position);
+        let n_dot_v = n.dot(v);
+        // Specular needs all three directions; a missing one (zero vector) means no highlight.
+        let specular_on = M::HAS_SPECULAR && n != Vec3::ZERO && v != Vec3::ZERO;
+
+        let mut ambient = self.ambient_light;
+        let mut diffuse = Vec3::ZERO;
+        let mut specular = Vec3::ZERO;
+        for (i, light) in self.lights.iter().enumerate() {
+            let sample = light.sample(position);
+            let vis = visibility.visibility(i);
+            debug_assert!(
+                (0.0..=1.0).contains(&vis),
+                "visibility of light {i} must lie in [0, 1], got {vis}"
+            );
+            let f = sample.factor;
+            let fv = f * math::clamp_or_lo(vis, 0.0, 1.0);
+            let l = sample.direction;
+            let (wd, ws) = match self.resolved {
+                Some(r) => {
+                    let n_dot_l = n.dot(l);
+                    let wd = r.diffuse(n_dot_l);
+                    let base = match r.lobe {
+                        Lobe::None => 0.0,
+                        Lobe::Phong => ResolvedModel::phong_base(n_dot_l, n_dot_v, l.dot(v)),
+                        Lobe::Blinn => n_dot_h_squared(n, l, v),
+                    };
+                    let ws =
+                        surface.specular.scale * r.gate(n_dot_l) * surface.specular.power(base);
+                    let ws = if specular_on && l != Vec3::ZERO {
+                        ws
+                    } else {
+                        0.0
+                    };
+                    (wd, ws)
+                }
+                None => {
+                    let g = Incidence::new(n, l, v);
+                    let wd = if l != Vec3::ZERO {
+                        self.model.diffuse(&g)
+                    } else {
+                        0.0
+                    };
+                    let ws = if specular_on && l != Vec3::ZERO {
+                        self.model.specular(&g, surface.s)
+                    } else {
+                        0.0
+                    };
+                    (wd, ws)
+                }
+            };
+            // Scalar weights first and saturated: finite × finite never gives NaN, and every colour
+            // is finite and ≥ 0, so the sums below can reach +∞ (saturated at the end) but never NaN.
+            let colors = light.colors();
+            ambient += colors.ambient() * f;
+            diffuse += colors.diffuse() * math::min_or(fv * wd, math::MAX);
+            specular += colors.specular() * math::min_or(fv * ws, math::MAX);
+        }
+        let sat = Vec3::splat(math::MAX);
+        Terms {
+            ambient: (surface.ka * ambient.min(sat)).min(sat),
+            diffuse: (surface.kd * diffuse.min(sat)).min(sat),
+            specular: (surface.ks * specular.min(sat)).min(sat),
+            emission: self.emission,
+        }
+    }
+}
+
+/// `(N·H)²` from the vectors, as [`Incidence::new`] computes it: `max(N·(L+V), 0)² / ‖L+V‖²`, 0 where
+/// `L + V` vanishes. Formed from `L + V` rather than `2 + 2 L·V`, which cancels as `L → −V`.
+#[inline(always)]
+fn n_dot_h_squared(n: Vec3, l: Vec3, v: Vec3) -> f32 {
+    let sum = l + v;
+    let t = math::max_or(n.dot(sum), 0.0);
+    let d = sum.length_squared();
+    let q = math::min_or(t * t / math::max_or(d, f32::MIN_POSITIVE), 1.0);
+    if d >= f32::MIN_POSITIVE { q } else { 0.0 }
+}
+
+/// The specular constants for shininess `s`: from the resolved model, or unused (custom models
+/// evaluate their own lobes).
+#[inline]
+fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
+    match resolved {
+        Some(r) => r.at_shininess(s),
+        None => SpecularPlan {
+            scale: 0.0,
+            plan: crate::pow::PowPlan::Squaring { n: 0 },
+        },
+    }
+}
