@@ -215,17 +215,33 @@ impl Attenuation {
     #[inline(always)]
     pub fn factor(&self, d: f32) -> f32 {
         let d = math::clamp_or_lo(d, 0.0, math::MAX);
-        let f = match *self {
+        match *self {
             Attenuation::None => 1.0,
             Attenuation::Polynomial {
                 constant,
                 linear,
                 quadratic,
             } => {
-                // Horner form: no ∞·0 for any finite d, so no NaN.
+                // Horner form: no ∞·0 for any finite d, so no NaN; the denominator is at least
+                // MIN_DENOMINATOR, so the factor is finite.
                 let den = constant + d * (linear + quadratic * d);
-                1.0 / math::max_or(den, Self::MIN_DENOMINATOR)
+                math::clamp_or_lo(
+                    1.0 / math::max_or(den, Self::MIN_DENOMINATOR),
+                    0.0,
+                    math::MAX,
+                )
             }
+            // The other forms run out of line, so shading loops inline only the common two.
+            _ => self.factor_other(d),
+        }
+    }
+
+    /// [`factor`](Self::factor) for the inverse-square and windowed forms, `d` already clamped.
+    #[inline(never)]
+    fn factor_other(&self, d: f32) -> f32 {
+        let f = match *self {
+            Attenuation::None => 1.0,
+            Attenuation::Polynomial { .. } => self.factor(d),
             Attenuation::InverseSquare {
                 power,
                 min_distance,

@@ -9,7 +9,7 @@ use glam::Vec3;
 use crate::attenuation::Attenuation;
 use crate::error::{self, PhongError};
 use crate::math;
-use crate::normalize::{direction_and_length, sub_saturating};
+use crate::normalize::direction_and_distance;
 use crate::pow::lobe_pow;
 
 /// The three colours a light contributes: to the ambient, diffuse and specular terms.
@@ -239,7 +239,7 @@ impl LightSource for DirectionalLight {
         &self.colors
     }
     /// `L` = the light's direction, factor 1: no distance, no attenuation work.
-    #[inline]
+    #[inline(always)]
     fn sample(&self, _p: Vec3) -> LightSample {
         LightSample {
             direction: self.direction,
@@ -311,9 +311,9 @@ impl LightSource for PointLight {
         &self.colors
     }
     /// `L = normalize(P_light − p)`, factor = attenuation(‖P_light − p‖).
-    #[inline]
+    #[inline(always)]
     fn sample(&self, p: Vec3) -> LightSample {
-        let (direction, d) = direction_and_length(sub_saturating(self.position, p));
+        let (direction, d) = direction_and_distance(self.position, p);
         LightSample {
             direction,
             factor: self.attenuation.factor(d),
@@ -462,7 +462,7 @@ impl LightSource for SpotLight {
     /// Like [`PointLight`], times [`SpotLight::spot_factor`].
     #[inline]
     fn sample(&self, p: Vec3) -> LightSample {
-        let (direction, d) = direction_and_length(sub_saturating(self.position, p));
+        let (direction, d) = direction_and_distance(self.position, p);
         let spot = self.spot_factor(direction);
         let factor = if spot > 0.0 {
             (self.attenuation.factor(d) * spot).min(math::MAX)

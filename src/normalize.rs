@@ -6,13 +6,21 @@
 //! failures. The functions here rescale by a power of two first, which is exact, so the answer is the
 //! correctly scaled direction for every finite input.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A, Vec4};
 
 use crate::math;
 
 /// Squared lengths in `[LO, HI]` are normalised directly; outside it the vector is rescaled first.
 const LO: f32 = 1.0e-30;
 const HI: f32 = 1.0e30;
+
+/// `l2 ∈ [LO, HI]` in one integer compare: for `l2 ≥ 0` the bit patterns of floats are ordered
+/// like the floats, and the subtraction wraps everything below `LO` (and NaN, `+∞`, which lie above
+/// `HI`) past the bound. One test and one branch per normalisation on the hot path.
+#[inline(always)]
+fn in_common_range(l2: f32) -> bool {
+    l2.to_bits().wrapping_sub(LO.to_bits()) <= HI.to_bits() - LO.to_bits()
+}
 
 /// Multiplies by 2^k exactly by rescaling so the largest component lands in [1, 2).
 #[inline]
@@ -57,22 +65,26 @@ fn rescaled(v: Vec3) -> Vec3 {
 #[inline(always)]
 pub fn normalize_or_zero(v: Vec3) -> Vec3 {
     let l2 = v.length_squared();
-    if (LO..=HI).contains(&l2) {
+    if in_common_range(l2) {
         return v * (1.0 / math::sqrt(l2));
     }
-    normalize_rare(v)
+    normalize_rare(v.into()).into()
 }
 
 /// The rare cases of [`normalize_or_zero`], kept out of line so the common path stays small
 /// enough to inline into shading loops.
+///
+/// Takes and returns `Vec3A`, a SIMD type that crosses the call in a vector register: a 12-byte
+/// `Vec3` would cross it in integer registers and cost the hot path moves through memory.
 #[cold]
 #[inline(never)]
-fn normalize_rare(v: Vec3) -> Vec3 {
+fn normalize_rare(v: Vec3A) -> Vec3A {
+    let v = Vec3::from(v);
     if !v.is_finite() || v == Vec3::ZERO {
-        return Vec3::ZERO;
+        return Vec3A::ZERO;
     }
     let s = rescaled(v);
-    s * (1.0 / math::sqrt(s.length_squared()))
+    (s * (1.0 / math::sqrt(s.length_squared()))).into()
 }
 
 /// `Some(v / ‖v‖)`, or `None` when `v` is zero or not finite. See [`normalize_or_zero`].
@@ -104,7 +116,7 @@ pub fn try_normalize(v: Vec3) -> Option<Vec3> {
 #[inline(always)]
 pub fn length(v: Vec3) -> f32 {
     let l2 = v.length_squared();
-    if (LO..=HI).contains(&l2) {
+    if in_common_range(l2) {
         return math::sqrt(l2);
     }
     length_rare(v)
@@ -141,17 +153,44 @@ pub(crate) fn sub_saturating(a: Vec3, b: Vec3) -> Vec3 {
     d.max(Vec3::splat(-math::MAX)).min(Vec3::splat(math::MAX))
 }
 
-/// The unit direction of `v` and its length, sharing one square root on the common path.
+/// The unit direction from `from` to `to` and the distance, sharing one square root on the
+/// common path: `(normalize_or_zero(to − from), length(to − from))` with the difference saturated
+/// to `±f32::MAX` per component.
 ///
-/// Returns `(0, 0)` for the zero vector; the length saturates as in [`length`].
+/// Returns `(0, 0)` when the points coincide; the distance saturates as in [`length`]. The common
+/// path subtracts without saturating: a difference that overflows has an infinite squared length,
+/// which fails the range test and is redone saturated out of line.
 #[inline(always)]
-pub(crate) fn direction_and_length(v: Vec3) -> (Vec3, f32) {
+pub(crate) fn direction_and_distance(to: Vec3, from: Vec3) -> (Vec3, f32) {
+    let v = to - from;
     let l2 = v.length_squared();
-    if (LO..=HI).contains(&l2) {
+    if in_common_range(l2) {
         let d = math::sqrt(l2);
         return (v * (1.0 / d), d);
     }
-    (normalize_rare(v), length_rare(v))
+    let r = direction_and_distance_rare(to.into(), from.into());
+    (r.truncate(), r.w)
+}
+
+/// `normalize_or_zero(to − from)` with the difference saturated as in [`direction_and_distance`].
+#[inline(always)]
+pub(crate) fn direction_between(to: Vec3, from: Vec3) -> Vec3 {
+    let v = to - from;
+    let l2 = v.length_squared();
+    if in_common_range(l2) {
+        return v * (1.0 / math::sqrt(l2));
+    }
+    direction_and_distance_rare(to.into(), from.into()).truncate()
+}
+
+/// The rare cases of [`direction_and_distance`], out of line: the direction in `xyz` and the
+/// distance in `w` of one `Vec4`, which crosses the call in a vector register (see
+/// [`normalize_rare`]).
+#[cold]
+#[inline(never)]
+fn direction_and_distance_rare(to: Vec3A, from: Vec3A) -> Vec4 {
+    let v = sub_saturating(to.into(), from.into());
+    normalize_or_zero(v).extend(length(v))
 }
 
 #[cfg(test)]

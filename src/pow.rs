@@ -266,8 +266,21 @@ pub(crate) enum PowPlan {
 
 impl PowPlan {
     /// `x^s` for `x ∈ (0, 1]` (callers handle `x ≤ 0`).
+    ///
+    /// Only what [`PowStrategy::Auto`] picks (squaring, the degree-7 polynomial) is inlined into
+    /// the caller: the other plans run out of line, so a shading loop stays small enough to keep
+    /// its values in registers.
     #[inline(always)]
     pub(crate) fn eval(self, x: f32) -> f32 {
+        match self {
+            PowPlan::Squaring { n } => pow_u32(x, n),
+            PowPlan::Poly { s, poly: Poly::P7 } => poly_pow(Poly::P7, x, s),
+            other => other.eval_out_of_line(x),
+        }
+    }
+
+    #[inline(never)]
+    fn eval_out_of_line(self, x: f32) -> f32 {
         match self {
             PowPlan::Exact { s } => lobe_pow(x, s),
             PowPlan::Squaring { n } => pow_u32(x, n),

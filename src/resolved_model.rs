@@ -124,17 +124,6 @@ pub(crate) struct SpecularPlan {
     pub(crate) plan: PowPlan,
 }
 
-impl SpecularPlan {
-    /// `base^k·s` for a lobe base: `x ≤ 0` or NaN gives 0, `x ≥ 1` gives 1 (so `0^0 = 0`).
-    /// Branch-free in `x`: the plan's evaluation runs on the clamped base and is selected away.
-    #[inline(always)]
-    pub(crate) fn power(&self, x: f32) -> f32 {
-        let b = math::clamp_or_lo(x, 0.0, 1.0);
-        let p = self.plan.eval(b);
-        if x > 0.0 { p } else { 0.0 }
-    }
-}
-
 impl From<Lambert> for ResolvedModel {
     fn from(m: Lambert) -> Self {
         ResolvedModel::new(

@@ -7,8 +7,9 @@ use crate::light::{LightSource, sanitize_colour};
 use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
-use crate::normalize::sub_saturating;
+use crate::normalize::direction_between;
 use crate::normalize_or_zero;
+use crate::pow::{PowPlan, PowStrategy, pow_u32};
 use crate::resolved_model::{Lobe, ResolvedModel, SpecularPlan};
 use crate::shade::{Scene, Viewer};
 use crate::surface::Surface;
@@ -71,11 +72,11 @@ pub struct Shader<'a, M, L> {
     ambient_light: Vec3,
     viewer: Viewer,
     emission: Vec3,
-    surface: Surface,
-    specular: SpecularPlan,
+    prepared: Prepared,
 }
 
 /// A surface with its specular constants, sanitised, ready for the per-light loop.
+#[derive(Clone, Copy, Debug)]
 struct Prepared {
     ka: Vec3,
     kd: Vec3,
@@ -100,7 +101,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             Viewer::At(eye) => Viewer::At(eye),
             Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
         };
-        let surface = Surface::of(material);
+        let s = material.shininess();
         Shader {
             model,
             resolved,
@@ -108,8 +109,44 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             ambient_light: sanitize_colour(scene.ambient),
             viewer,
             emission: material.emission(),
-            surface,
-            specular: plan_for(resolved, surface.shininess),
+            prepared: Prepared {
+                ka: material.ambient(),
+                kd: material.diffuse(),
+                ks: material.specular(),
+                s,
+                specular: plan_for(resolved, s),
+            },
+        }
+    }
+
+    /// The same shader with another viewer: what a ray tracer changes at every hit, where the
+    /// viewer is [`Viewer::along_ray`] of the ray that hit. Cheap: a copy and, for an infinite
+    /// viewer, one normalisation.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
+    /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE)?)?;
+    /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+    /// let m = Material::try_from_color(Vec3::ONE, 64.0)?;
+    /// let shader = Shader::new(Phong::default(), &m, &scene);
+    /// // A ray travelling straight down onto a floor facing the sun sees the highlight.
+    /// let hit = shader.with_viewer(Viewer::along_ray(-Vec3::Z)).shade(Vec3::ZERO, Vec3::Z);
+    /// assert_eq!(hit.specular, Vec3::ONE);
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn with_viewer(&self, viewer: Viewer) -> Self
+    where
+        M: Copy,
+    {
+        Shader {
+            viewer: match viewer {
+                Viewer::At(eye) => Viewer::At(eye),
+                Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
+            },
+            ..*self
         }
     }
 
@@ -156,14 +193,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         normal: Vec3,
         visibility: impl Visibility,
     ) -> Terms {
-        let p = Prepared {
-            ka: self.surface.ambient,
-            kd: self.surface.diffuse,
-            ks: self.surface.specular,
-            s: self.surface.shininess,
-            specular: self.specular,
-        };
-        self.run(&p, position, normal, visibility)
+        self.run(&self.prepared, position, normal, visibility)
     }
 
     /// The four terms with a per-point [`Surface`] in place of the material's reflectances and
@@ -246,7 +276,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     #[inline(always)]
     fn view_direction(&self, position: Vec3) -> Vec3 {
         match self.viewer {
-            Viewer::At(eye) => normalize_or_zero(sub_saturating(eye, position)),
+            Viewer::At(eye) => direction_between(eye, position),
             Viewer::Infinite(dir) => dir,
         }
     }
@@ -257,14 +287,159 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         surface: &Prepared,
         position: Vec3,
         normal: Vec3,
-        mut visibility: impl Visibility,
+        visibility: impl Visibility,
     ) -> Terms {
         let n = normalize_or_zero(normal);
         let v = self.view_direction(position);
-        let n_dot_v = n.dot(v);
-        // Specular needs all three directions; a missing one (zero vector) means no highlight.
-        let specular_on = M::HAS_SPECULAR && n != Vec3::ZERO && v != Vec3::ZERO;
+        // One loop per lobe, chosen once per point: each stays small enough to keep its values in
+        // registers, where one loop branching per light on the lobe kind spilled to the stack.
+        let pt = Point { position, n, v };
+        let (ambient, diffuse, specular) = match self.resolved {
+            Some(r) if !M::HAS_SPECULAR || r.lobe == Lobe::None => {
+                self.light_loop::<NO_LOBE>(r, surface, pt, visibility, |_| 0.0)
+            }
+            // The pow plan is chosen here too, so the loop runs the plan's code inline and calls
+            // nothing: a call inside it would force every live value out of the vector registers.
+            Some(r) => match surface.specular.plan {
+                PowPlan::Squaring { n } => {
+                    self.lobe_loop(r, surface, pt, visibility, move |x| pow_u32(x, n))
+                }
+                PowPlan::Exact { s } => {
+                    self.lobe_loop(r, surface, pt, visibility, move |x| math::powf(x, s))
+                }
+                plan => self.lobe_loop(r, surface, pt, visibility, move |x| plan.eval(x)),
+            },
+            None => self.custom_loop(surface, pt, visibility),
+        };
+        let sat = Vec3::splat(math::MAX);
+        Terms {
+            ambient: (surface.ka * ambient.min(sat)).min(sat),
+            diffuse: (surface.kd * diffuse.min(sat)).min(sat),
+            specular: (surface.ks * specular.min(sat)).min(sat),
+            emission: self.emission,
+        }
+    }
 
+    /// [`light_loop`](Self::light_loop) for the model's lobe.
+    #[inline(always)]
+    fn lobe_loop(
+        &self,
+        r: ResolvedModel,
+        surface: &Prepared,
+        pt: Point,
+        visibility: impl Visibility,
+        pow: impl Fn(f32) -> f32,
+    ) -> (Vec3, Vec3, Vec3) {
+        if r.lobe == Lobe::Blinn {
+            self.light_loop::<BLINN>(r, surface, pt, visibility, pow)
+        } else {
+            self.light_loop::<PHONG>(r, surface, pt, visibility, pow)
+        }
+    }
+
+    /// The light sums `(Ia + Σ f·La, Σ f·vis·wd·Ld, Σ f·vis·ws·Ls)` for a crate model whose lobe is
+    /// `LOBE`, with `pow(x) = x^e` on `(0, 1]` for the lobe's exponent `e`.
+    #[inline(always)]
+    fn light_loop<const LOBE: u8>(
+        &self,
+        r: ResolvedModel,
+        surface: &Prepared,
+        pt: Point,
+        mut visibility: impl Visibility,
+        pow: impl Fn(f32) -> f32,
+    ) -> (Vec3, Vec3, Vec3) {
+        let Point { position, n, v } = pt;
+        let n_dot_v = n.dot(v);
+        // A missing direction (zero vector) means no highlight. For Phong a zero L or V already
+        // gives a base R·V = 0, so only a zero N needs the mask; Blinn-Phong's (N·H)² needs all
+        // three, and L is tested per light below.
+        let present = n != Vec3::ZERO && (LOBE != BLINN || v != Vec3::ZERO);
+        let specular_scale = if present { surface.specular.scale } else { 0.0 };
+        let sums = (self.ambient_light, Vec3::ZERO, Vec3::ZERO);
+        let k = LightConsts {
+            r,
+            position,
+            n,
+            v,
+            n_dot_v,
+            specular_scale,
+        };
+        // One light, the commonest case, without a loop: straight-line code, so a caller's loop
+        // over points has no inner loop and the compiler can vectorise it across points.
+        if let [light] = self.lights {
+            return Self::add_light::<LOBE>(&k, sums, 0, light, visibility.visibility(0), &pow);
+        }
+        let mut sums = sums;
+        for (i, light) in self.lights.iter().enumerate() {
+            sums = Self::add_light::<LOBE>(&k, sums, i, light, visibility.visibility(i), &pow);
+        }
+        sums
+    }
+
+    /// Adds one light's parts to the sums `(ambient, diffuse, specular)`.
+    #[inline(always)]
+    fn add_light<const LOBE: u8>(
+        k: &LightConsts,
+        sums: (Vec3, Vec3, Vec3),
+        i: usize,
+        light: &L,
+        vis: f32,
+        pow: &impl Fn(f32) -> f32,
+    ) -> (Vec3, Vec3, Vec3) {
+        let LightConsts {
+            r,
+            position,
+            n,
+            v,
+            n_dot_v,
+            specular_scale,
+        } = *k;
+        let (mut ambient, mut diffuse, mut specular) = sums;
+        let sample = light.sample(position);
+        debug_assert!(
+            (0.0..=1.0).contains(&vis),
+            "visibility of light {i} must lie in [0, 1], got {vis}"
+        );
+        let f = sample.factor;
+        let fv = f * math::clamp_or_lo(vis, 0.0, 1.0);
+        let l = sample.direction;
+        let n_dot_l = n.dot(l);
+        let wd = r.diffuse(n_dot_l);
+        let ws = match LOBE {
+            PHONG => {
+                let base = ResolvedModel::phong_base(n_dot_l, n_dot_v, l.dot(v));
+                specular_scale * r.gate(n_dot_l) * lobe_power(base, pow)
+            }
+            BLINN => {
+                let base = n_dot_h_squared(n, l, v);
+                let ws = specular_scale * r.gate(n_dot_l) * lobe_power(base, pow);
+                if l != Vec3::ZERO { ws } else { 0.0 }
+            }
+            _ => 0.0,
+        };
+        // Scalar weights first and saturated: finite × finite never gives NaN, and every colour
+        // is finite and ≥ 0, so the sums below can reach +∞ (saturated at the end) but never NaN.
+        let colors = light.colors();
+        ambient += colors.ambient() * f;
+        diffuse += colors.diffuse() * math::min_or(fv * wd, math::MAX);
+        if LOBE != NO_LOBE {
+            specular += colors.specular() * math::min_or(fv * ws, math::MAX);
+        }
+        (ambient, diffuse, specular)
+    }
+
+    /// The light sums for a model that does not resolve (one defined outside this crate), through
+    /// its trait methods on an [`Incidence`]; out of line, so the crate's own models' loops stay
+    /// small.
+    #[inline(never)]
+    fn custom_loop(
+        &self,
+        surface: &Prepared,
+        pt: Point,
+        mut visibility: impl Visibility,
+    ) -> (Vec3, Vec3, Vec3) {
+        let Point { position, n, v } = pt;
+        let specular_on = M::HAS_SPECULAR && n != Vec3::ZERO && v != Vec3::ZERO;
         let mut ambient = self.ambient_light;
         let mut diffuse = Vec3::ZERO;
         let mut specular = Vec3::ZERO;
@@ -278,55 +453,57 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             let f = sample.factor;
             let fv = f * math::clamp_or_lo(vis, 0.0, 1.0);
             let l = sample.direction;
-            let (wd, ws) = match self.resolved {
-                Some(r) => {
-                    let n_dot_l = n.dot(l);
-                    let wd = r.diffuse(n_dot_l);
-                    let base = match r.lobe {
-                        Lobe::None => 0.0,
-                        Lobe::Phong => ResolvedModel::phong_base(n_dot_l, n_dot_v, l.dot(v)),
-                        Lobe::Blinn => n_dot_h_squared(n, l, v),
-                    };
-                    let ws =
-                        surface.specular.scale * r.gate(n_dot_l) * surface.specular.power(base);
-                    let ws = if specular_on && l != Vec3::ZERO {
-                        ws
-                    } else {
-                        0.0
-                    };
-                    (wd, ws)
-                }
-                None => {
-                    let g = Incidence::new(n, l, v);
-                    let wd = if l != Vec3::ZERO {
-                        self.model.diffuse(&g)
-                    } else {
-                        0.0
-                    };
-                    let ws = if specular_on && l != Vec3::ZERO {
-                        self.model.specular(&g, surface.s)
-                    } else {
-                        0.0
-                    };
-                    (wd, ws)
-                }
+            let (wd, ws) = if l == Vec3::ZERO {
+                (0.0, 0.0)
+            } else {
+                let g = Incidence::new(n, l, v);
+                let ws = if specular_on {
+                    self.model.specular(&g, surface.s)
+                } else {
+                    0.0
+                };
+                (self.model.diffuse(&g), ws)
             };
-            // Scalar weights first and saturated: finite × finite never gives NaN, and every colour
-            // is finite and ≥ 0, so the sums below can reach +∞ (saturated at the end) but never NaN.
             let colors = light.colors();
             ambient += colors.ambient() * f;
             diffuse += colors.diffuse() * math::min_or(fv * wd, math::MAX);
             specular += colors.specular() * math::min_or(fv * ws, math::MAX);
         }
-        let sat = Vec3::splat(math::MAX);
-        Terms {
-            ambient: (surface.ka * ambient.min(sat)).min(sat),
-            diffuse: (surface.kd * diffuse.min(sat)).min(sat),
-            specular: (surface.ks * specular.min(sat)).min(sat),
-            emission: self.emission,
-        }
+        (ambient, diffuse, specular)
     }
 }
+
+/// What every light's evaluation at one point shares.
+#[derive(Clone, Copy)]
+struct LightConsts {
+    r: ResolvedModel,
+    position: Vec3,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    specular_scale: f32,
+}
+
+/// The point being shaded: its position, unit (or zero) normal and direction to the viewer.
+#[derive(Clone, Copy)]
+struct Point {
+    position: Vec3,
+    n: Vec3,
+    v: Vec3,
+}
+
+/// `base^e` through `pow` for a lobe base: `x ≤ 0` or NaN gives 0, `x ≥ 1` gives `pow(1)` (so
+/// `0^0 = 0`). Branch-free in `x`: `pow` runs on the clamped base and is selected away.
+#[inline(always)]
+fn lobe_power(x: f32, pow: &impl Fn(f32) -> f32) -> f32 {
+    let p = pow(math::clamp_or_lo(x, 0.0, 1.0));
+    if x > 0.0 { p } else { 0.0 }
+}
+
+/// The lobe kinds as const-generic parameters of [`Shader::light_loop`].
+const NO_LOBE: u8 = 0;
+const PHONG: u8 = 1;
+const BLINN: u8 = 2;
 
 /// `(N·H)²` from the vectors, as [`Incidence::new`] computes it: `max(N·(L+V), 0)² / ‖L+V‖²`, 0 where
 /// `L + V` vanishes. Formed from `L + V` rather than `2 + 2 L·V`, which cancels as `L → −V`.
@@ -344,6 +521,19 @@ fn n_dot_h_squared(n: Vec3, l: Vec3, v: Vec3) -> f32 {
 #[inline]
 fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
     match resolved {
+        // Point by point, `powf` is cheaper than the polynomials (measured: docs/performance.md),
+        // so `Auto` takes squaring for a whole exponent and `powf` for any other here.
+        Some(r) if r.pow == PowStrategy::Auto => {
+            let p = r.at_shininess(s);
+            match p.plan {
+                PowPlan::Squaring { .. } => p,
+                _ => ResolvedModel {
+                    pow: PowStrategy::Exact,
+                    ..r
+                }
+                .at_shininess(s),
+            }
+        }
         Some(r) => r.at_shininess(s),
         None => SpecularPlan {
             scale: 0.0,
