@@ -3,9 +3,18 @@
 //! Groups `phong_4096`, `blinn_4096`, `phong_1m`, `blinn_1m`, each with
 //! - `naive_glam`: LearnOpenGL's point-light shader transcribed per point with glam `Vec3`
 //!   (normalize, reflect / halfway, `powf`, `1/(c + l·d + q·d²)`), written here, not in the crate;
-//! - `scalar`: `phong::shade` in a loop over the same array-of-structs input;
+//! - `scalar`: the per-point API of the README and `examples/raytracer.rs`: a
+//!   [`phong::Shader`] prepared once from the model's defaults, then `shade(p, n).total()` per point;
+//! - `shade`: the free function `phong::shade` per point (it prepares the shader on every call);
 //! - `batch`: `phong::shade_batch` on structure-of-arrays copies (shininess 32);
 //! - `batch_frac`: the same at shininess 20.5 (a non-integer exponent: polynomial pow).
+//!
+//! Real-shaped groups, each with `phong` against `hand` (the same lighting written by hand in the
+//! LearnOpenGL style, with glam), over the same recorded inputs:
+//! - `raytrace`: a ray tracer's hits (position, normal, direction back along the ray) under three
+//!   point lights with per-light visibility from shadow rays;
+//! - `fragment`: a rasterizer's fragments with a per-pixel diffuse colour, specular strength,
+//!   shininess (non-integer, uniform in [2, 128]) and shadow factor.
 //!
 //! Extra groups for docs/performance.md: `pow_4096` (every pow strategy, both models, s = 32 and
 //! 20.5) and `levels_4096` (every dispatch level this CPU runs).
@@ -153,6 +162,22 @@ fn blinn_model(pow: PowStrategy) -> BlinnPhong {
     }
 }
 
+/// The README's per-point API: prepare once, shade each point.
+#[inline(never)]
+fn shader_loop<M: phong::ReflectionModel>(
+    model: M,
+    mat: &Material,
+    scene: &Scene<'_, PointLight>,
+    p: &[Vec3],
+    n: &[Vec3],
+    out: &mut [Vec3],
+) {
+    let shader = phong::Shader::new(model, mat, scene);
+    for i in 0..p.len() {
+        out[i] = shader.shade(p[i], n[i]).total();
+    }
+}
+
 #[inline(never)]
 fn scalar_loop<M: phong::ReflectionModel>(
     model: &M,
@@ -208,16 +233,24 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
         naive_glam(kind, s, &p, &nn, naive);
         match kind {
             Kind::Phong => {
-                scalar_loop(&phong_model(PowStrategy::Auto), &m, &scene, &p, &nn, scalar);
+                shader_loop(Phong::default(), &m, &scene, &p, &nn, scalar);
+                for i in 0..n {
+                    assert_close("scalar", scalar[i], naive[i], i);
+                }
+                scalar_loop(&Phong::default(), &m, &scene, &p, &nn, scalar);
                 batch_run(level, &phong_model(PowStrategy::Auto), &m, &scene, soa);
             }
             Kind::Blinn => {
-                scalar_loop(&blinn_model(PowStrategy::Auto), &m, &scene, &p, &nn, scalar);
+                shader_loop(BlinnPhong::default(), &m, &scene, &p, &nn, scalar);
+                for i in 0..n {
+                    assert_close("scalar", scalar[i], naive[i], i);
+                }
+                scalar_loop(&BlinnPhong::default(), &m, &scene, &p, &nn, scalar);
                 batch_run(level, &blinn_model(PowStrategy::Auto), &m, &scene, soa);
             }
         }
         for i in 0..n {
-            assert_close("scalar", scalar[i], naive[i], i);
+            assert_close("shade", scalar[i], naive[i], i);
             assert_close("batch", soa_out(soa, i), naive[i], i);
         }
     };
@@ -241,7 +274,28 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
         Kind::Phong => {
             let model = phong_model(PowStrategy::Auto);
             g.bench_function("scalar", |b| {
-                b.iter(|| scalar_loop(&model, &m32, &scene, black_box(&p), &nn, &mut scalar))
+                b.iter(|| {
+                    shader_loop(
+                        black_box(Phong::default()),
+                        &m32,
+                        &scene,
+                        black_box(&p),
+                        &nn,
+                        &mut scalar,
+                    )
+                })
+            });
+            g.bench_function("shade", |b| {
+                b.iter(|| {
+                    scalar_loop(
+                        black_box(&Phong::default()),
+                        &m32,
+                        &scene,
+                        black_box(&p),
+                        &nn,
+                        &mut scalar,
+                    )
+                })
             });
             g.bench_function("batch", |b| {
                 b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))
@@ -253,7 +307,28 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
         Kind::Blinn => {
             let model = blinn_model(PowStrategy::Auto);
             g.bench_function("scalar", |b| {
-                b.iter(|| scalar_loop(&model, &m32, &scene, black_box(&p), &nn, &mut scalar))
+                b.iter(|| {
+                    shader_loop(
+                        black_box(BlinnPhong::default()),
+                        &m32,
+                        &scene,
+                        black_box(&p),
+                        &nn,
+                        &mut scalar,
+                    )
+                })
+            });
+            g.bench_function("shade", |b| {
+                b.iter(|| {
+                    scalar_loop(
+                        black_box(&BlinnPhong::default()),
+                        &m32,
+                        &scene,
+                        black_box(&p),
+                        &nn,
+                        &mut scalar,
+                    )
+                })
             });
             g.bench_function("batch", |b| {
                 b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))

@@ -304,9 +304,10 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 PowPlan::Squaring { n } => {
                     self.lobe_loop(r, surface, pt, visibility, move |x| pow_u32(x, n))
                 }
-                PowPlan::Exact { s } => {
-                    self.lobe_loop(r, surface, pt, visibility, move |x| math::powf(x, s))
-                }
+                // `powf` is a call worth skipping: about half of all lobe bases are ≤ 0.
+                PowPlan::Exact { s } => self.lobe_loop(r, surface, pt, visibility, move |x| {
+                    if x > 0.0 { math::powf(x, s) } else { 0.0 }
+                }),
                 plan => self.lobe_loop(r, surface, pt, visibility, move |x| plan.eval(x)),
             },
             None => self.custom_loop(surface, pt, visibility),
