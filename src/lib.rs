@@ -85,7 +85,7 @@ compile_error!(
 );
 
 mod attenuation;
-mod batch;
+pub mod batch;
 mod blinn_phong;
 mod color;
 mod error;

@@ -65,7 +65,7 @@ pub struct Scene<'a, L> {
 /// ```
 ///
 /// with `fᵢ` light `i`'s attenuation × spot factor at the point and `gᵢ` the cosines of
-/// `N = normalize(normal)`, `Lᵢ` and `V` ([`Incidence`]). Light `i`'s ambient part is attenuated like
+/// `N = normalize(normal)`, `Lᵢ` and `V` ([`Incidence`](crate::Incidence)). Light `i`'s ambient part is attenuated like
 /// its other parts, as in OpenGL and LearnOpenGL's multiple-lights chapter.
 ///
 /// **Domain:** any finite `position` and `normal` (the normal need not be unit: it is normalised
