@@ -1,0 +1,431 @@
+//! The prepared per-point path: `Shader`, visibility (shadows), per-point surfaces, `Terms` algebra,
+//! and the generic path for models defined outside the crate.
+
+use glam::Vec3;
+use phong::{
+    Attenuation, BlinnPhong, DirectionalLight, Incidence, Lambert, Light, LightColors, Material,
+    Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel, Scene, Shader,
+    SpecularGate, Surface, Terms, Unshadowed, Viewer, VisibilityFn,
+};
+use proptest::prelude::*;
+
+/// One f32 rounding, relative.
+const U: f32 = f32::EPSILON / 2.0;
+
+/// Below `f32::MIN_POSITIVE` a rounding is absolute, at most half the subnormal spacing (`2⁻¹⁴⁹`):
+/// allow one subnormal spacing per rounding in the bounds below.
+fn subnormal(roundings: f32) -> Vec3 {
+    Vec3::splat(roundings * f32::from_bits(1))
+}
+
+fn lights() -> [Light; 3] {
+    let c = |a: f32, d: f32, s: f32| {
+        LightColors::try_new(
+            Vec3::splat(a),
+            Vec3::new(d, 0.8 * d, 0.6 * d),
+            Vec3::splat(s),
+        )
+        .unwrap()
+    };
+    [
+        PointLight::try_new(
+            Vec3::new(2.0, 3.0, 1.0),
+            Attenuation::try_polynomial(1.0, 0.09, 0.032).unwrap(),
+            c(0.1, 1.0, 0.7),
+        )
+        .unwrap()
+        .into(),
+        DirectionalLight::try_new(Vec3::new(-1.0, 2.0, 0.5), c(0.05, 0.6, 0.4))
+            .unwrap()
+            .into(),
+        PointLight::try_new(
+            Vec3::new(-1.0, 0.5, 3.0),
+            Attenuation::try_frostbite(8.0).unwrap(),
+            c(0.02, 2.0, 1.5),
+        )
+        .unwrap()
+        .into(),
+    ]
+}
+
+fn models() -> Vec<Model> {
+    let mut v = vec![Model::Lambert(Lambert::default())];
+    for gate in [SpecularGate::Step, SpecularGate::Cosine, SpecularGate::None] {
+        for normalization in [Normalization::None, Normalization::Energy] {
+            for pow in [PowStrategy::Exact, PowStrategy::Auto, PowStrategy::Poly7] {
+                v.push(Model::Phong(Phong {
+                    gate,
+                    normalization,
+                    pow,
+                }));
+                v.push(Model::BlinnPhong(BlinnPhong {
+                    gate,
+                    normalization,
+                    pow,
+                }));
+            }
+        }
+    }
+    v
+}
+
+fn material() -> Material {
+    Material::try_new(
+        Vec3::new(0.2, 0.1, 0.1),
+        Vec3::new(0.8, 0.4, 0.3),
+        Vec3::splat(0.6),
+        24.0,
+    )
+    .unwrap()
+    .try_with_emission(Vec3::new(0.01, 0.0, 0.02))
+    .unwrap()
+}
+
+fn points() -> Vec<(Vec3, Vec3)> {
+    let mut v = Vec::new();
+    for i in 0..40 {
+        let t = i as f32 * 0.37;
+        let p = Vec3::new(t.sin() * 2.0, (t * 1.3).cos(), (t * 0.7).sin() * 1.5);
+        let n = Vec3::new((t * 2.1).cos(), (t * 0.9).sin() + 0.3, (t * 1.7).cos());
+        v.push((p, n));
+    }
+    v
+}
+
+#[test]
+fn shade_is_the_prepared_shader_and_full_visibility_changes_nothing() {
+    let (lights, m) = (lights(), material());
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::splat(0.03),
+        viewer: Viewer::At(Vec3::new(0.0, 1.0, 5.0)),
+    };
+    for model in models() {
+        let shader = Shader::new(model, &m, &scene);
+        for (p, n) in points() {
+            let a = phong::shade(&model, &m, &scene, p, n);
+            assert_eq!(shader.shade(p, n), a, "{model:?}");
+            assert_eq!(shader.shade_visible(p, n, [1.0; 3]), a);
+            assert_eq!(shader.shade_visible(p, n, Unshadowed), a);
+            // The material's own reflectances as a per-point surface: the same computation.
+            assert_eq!(shader.shade_surface(p, n, &Surface::of(&m), [1.0; 3]), a);
+        }
+    }
+}
+
+#[test]
+fn a_shadowed_light_keeps_its_ambient_part_only() {
+    let (lights, m) = (lights(), material());
+    for model in models() {
+        for k in 0..3 {
+            let all = Scene {
+                lights: &lights,
+                ambient: Vec3::ZERO,
+                viewer: Viewer::Infinite(Vec3::new(0.2, 0.3, 1.0)),
+            };
+            let others: Vec<Light> = (0..3).filter(|&j| j != k).map(|j| lights[j]).collect();
+            let rest = Scene {
+                lights: &others,
+                ..all
+            };
+            let mut vis = [1.0; 3];
+            vis[k] = 0.0;
+            for (p, n) in points() {
+                let shadowed = Shader::new(model, &m, &all).shade_visible(p, n, vis);
+                let without = Shader::new(model, &m, &rest).shade(p, n);
+                let full = Shader::new(model, &m, &all).shade(p, n);
+                // Diffuse and specular: the same sums without light k's term, except that an
+                // added 0 can change the summation order's rounding by at most 2U of the sum.
+                for (a, b) in [
+                    (shadowed.diffuse, without.diffuse),
+                    (shadowed.specular, without.specular),
+                ] {
+                    assert!(
+                        (a - b).abs().cmple(b * 2.0 * U + subnormal(2.0)).all(),
+                        "{model:?} light {k}: {a} vs {b}"
+                    );
+                }
+                // Ambient: a shadow does not touch it.
+                assert_eq!(shadowed.ambient, full.ambient);
+                assert_eq!(shadowed.emission, m.emission());
+            }
+        }
+    }
+}
+
+#[test]
+fn visibility_scales_diffuse_and_specular_linearly() {
+    let sun = DirectionalLight::try_new(
+        Vec3::new(0.3, 0.2, 1.0),
+        LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE).unwrap(),
+    )
+    .unwrap();
+    let scene = Scene {
+        lights: &[sun],
+        ambient: Vec3::ZERO,
+        viewer: Viewer::Infinite(Vec3::Z),
+    };
+    let m = material();
+    let shader = Shader::new(Phong::default(), &m, &scene);
+    for (p, n) in points() {
+        let full = shader.shade(p, n);
+        for vis in [0.0f32, 0.25, 0.5, 0.9] {
+            let t = shader.shade_visible(p, n, [vis]);
+            // Both sides are the exact product f·vis·w·L·K after four roundings each (the shader
+            // rounds f·vis, ·w, ·L, ·K; the test rounds f·w, ·L, ·K and then ·vis): ≤ 8U apart.
+            for (a, b) in [(t.diffuse, full.diffuse), (t.specular, full.specular)] {
+                let want = b * vis;
+                assert!(
+                    (a - want)
+                        .abs()
+                        .cmple(want * 8.0 * U + subnormal(8.0))
+                        .all(),
+                    "vis {vis}: {a} vs {want}"
+                );
+            }
+            assert_eq!(t.ambient, full.ambient);
+        }
+    }
+}
+
+#[test]
+fn visibility_closure_is_asked_once_per_light_in_order() {
+    let (lights, m) = (lights(), material());
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(0.0, 0.0, 4.0)),
+    };
+    let shader = Shader::new(BlinnPhong::default(), &m, &scene);
+    let mut asked = Vec::new();
+    let t = shader.shade_visible(
+        Vec3::ZERO,
+        Vec3::Z,
+        VisibilityFn(|i| {
+            asked.push(i);
+            [1.0, 0.0, 0.5][i]
+        }),
+    );
+    assert_eq!(asked, [0, 1, 2]);
+    assert_eq!(
+        t,
+        shader.shade_visible(Vec3::ZERO, Vec3::Z, [1.0, 0.0, 0.5])
+    );
+}
+
+/// Release builds read visibilities outside [0, 1] clamped, and NaN as 0 (debug builds assert).
+#[cfg(not(debug_assertions))]
+#[test]
+fn out_of_range_visibility_is_clamped_in_release() {
+    let (lights, m) = (lights(), material());
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(0.0, 0.0, 4.0)),
+    };
+    let shader = Shader::new(Phong::default(), &m, &scene);
+    let (p, n) = (Vec3::ZERO, Vec3::new(0.1, 0.3, 1.0));
+    assert_eq!(
+        shader.shade_visible(p, n, [f32::NAN, -3.0, 7.0]),
+        shader.shade_visible(p, n, [0.0, 0.0, 1.0])
+    );
+}
+
+#[test]
+fn a_per_point_surface_replaces_the_reflectances_and_keeps_the_emission() {
+    let (lights, m) = (lights(), material());
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::splat(0.02),
+        viewer: Viewer::At(Vec3::new(1.0, 1.0, 4.0)),
+    };
+    let texel = Surface {
+        ambient: Vec3::new(0.1, 0.2, 0.3),
+        diffuse: Vec3::new(0.5, 0.6, 0.7),
+        specular: Vec3::new(0.9, 0.1, 0.4),
+        shininess: 37.25,
+    };
+    let as_material = Material::try_new(texel.ambient, texel.diffuse, texel.specular, 37.25)
+        .unwrap()
+        .try_with_emission(m.emission())
+        .unwrap();
+    for model in models() {
+        for (p, n) in points() {
+            let a = Shader::new(model, &m, &scene).shade_surface(p, n, &texel, Unshadowed);
+            let b = Shader::new(model, &as_material, &scene).shade(p, n);
+            assert_eq!(a, b, "{model:?}");
+        }
+    }
+    // Occlusion scales the ambient term only.
+    let open = Shader::new(Phong::default(), &m, &scene).shade_surface(
+        Vec3::ZERO,
+        Vec3::Z,
+        &texel,
+        Unshadowed,
+    );
+    let half = Shader::new(Phong::default(), &m, &scene).shade_surface(
+        Vec3::ZERO,
+        Vec3::Z,
+        &texel.with_occlusion(0.5),
+        Unshadowed,
+    );
+    assert_eq!(half.diffuse, open.diffuse);
+    assert_eq!(half.specular, open.specular);
+    assert!(
+        (half.ambient - open.ambient * 0.5)
+            .abs()
+            .cmple(open.ambient * 2.0 * U + subnormal(2.0))
+            .all()
+    );
+}
+
+/// Release builds sanitise a bad surface by the rule of `Material::new` (debug builds assert).
+#[cfg(not(debug_assertions))]
+#[test]
+fn a_bad_surface_is_sanitised_in_release() {
+    let (lights, m) = (lights(), material());
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(0.0, 0.0, 4.0)),
+    };
+    let shader = Shader::new(BlinnPhong::default(), &m, &scene);
+    let bad = Surface {
+        ambient: Vec3::new(f32::NAN, -1.0, 0.5),
+        diffuse: Vec3::new(f32::INFINITY, 0.3, -0.0),
+        specular: Vec3::new(0.2, f32::NAN, 1.0),
+        shininess: f32::NAN,
+    };
+    let good = Surface {
+        ambient: Vec3::new(0.0, 0.0, 0.5),
+        diffuse: Vec3::new(f32::MAX, 0.3, 0.0),
+        specular: Vec3::new(0.2, 0.0, 1.0),
+        shininess: 0.0,
+    };
+    for (p, n) in points() {
+        let a = shader.shade_surface(p, n, &bad, Unshadowed);
+        assert_eq!(a, shader.shade_surface(p, n, &good, Unshadowed));
+        assert!(!a.total().is_nan());
+    }
+}
+
+#[test]
+fn incidence_is_what_shade_uses() {
+    let (lights, m) = (lights(), material());
+    let eye = Vec3::new(0.5, 2.0, 3.0);
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(eye),
+    };
+    let shader = Shader::new(Phong::default(), &m, &scene);
+    for (p, n) in points() {
+        for (k, light) in lights.iter().enumerate() {
+            let (g, f) = shader.incidence(p, n, k).unwrap();
+            let s = phong::LightSource::sample(light, p);
+            let want = Incidence::new(
+                phong::normalize_or_zero(n),
+                s.direction,
+                phong::normalize_or_zero(eye - p),
+            );
+            assert_eq!((g, f), (want, s.factor));
+        }
+        assert!(shader.incidence(p, n, 3).is_none());
+    }
+}
+
+/// A model defined outside the crate: Phong's lobes through the trait only, without `resolve`.
+struct External(Phong);
+
+impl ReflectionModel for External {
+    fn diffuse(&self, g: &Incidence) -> f32 {
+        self.0.diffuse(g)
+    }
+    fn specular(&self, g: &Incidence, s: f32) -> f32 {
+        self.0.specular(g, s)
+    }
+}
+
+#[test]
+fn a_model_from_outside_the_crate_shades_like_the_built_in_one() {
+    let (lights, m) = (lights(), material());
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::splat(0.01),
+        viewer: Viewer::At(Vec3::new(0.0, 1.0, 4.0)),
+    };
+    for gate in [SpecularGate::Step, SpecularGate::Cosine, SpecularGate::None] {
+        let builtin = Phong {
+            gate,
+            ..Phong::default()
+        };
+        let ext = Shader::new(External(builtin), &m, &scene);
+        let own = Shader::new(builtin, &m, &scene);
+        for (p, n) in points() {
+            let (a, b) = (ext.shade(p, n), own.shade(p, n));
+            // The trait path forms R·V from the same cosines and clamps it the same way: the only
+            // difference is where powf's argument is clamped, within a few roundings of each term.
+            for (x, y) in [(a.diffuse, b.diffuse), (a.specular, b.specular)] {
+                assert!(
+                    (x - y).abs().cmple(y * 8.0 * U + subnormal(8.0)).all(),
+                    "{gate:?}: {x} vs {y}"
+                );
+            }
+            assert_eq!(a.ambient, b.ambient);
+        }
+    }
+}
+
+#[test]
+fn terms_add_and_scale_channel_by_channel_and_saturate() {
+    let a = Terms {
+        ambient: Vec3::splat(1.0),
+        diffuse: Vec3::new(2.0, 3.0, 4.0),
+        specular: Vec3::splat(f32::MAX),
+        emission: Vec3::ZERO,
+    };
+    let s = a + a;
+    assert_eq!(s.diffuse, Vec3::new(4.0, 6.0, 8.0));
+    assert_eq!(s.specular, Vec3::splat(f32::MAX));
+    let mut t = a;
+    t += a;
+    assert_eq!(t, s);
+    assert_eq!((a * 0.5).diffuse, Vec3::new(1.0, 1.5, 2.0));
+    assert_eq!((a * f32::NAN).diffuse, Vec3::ZERO);
+    assert_eq!((a * -2.0).ambient, Vec3::ZERO);
+    assert_eq!((a * 4.0).specular, Vec3::splat(f32::MAX));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Shading with visibilities is the sum of one-light shadings, each scaled by its visibility:
+    /// contributions add linearly and a shadow scales one light's diffuse and specular parts.
+    #[test]
+    fn shadowed_shading_is_the_visibility_weighted_sum_of_lights(
+        v in proptest::array::uniform3(0.0f32..=1.0),
+        px in -3.0f32..3.0, py in -3.0f32..3.0, pz in -3.0f32..3.0,
+        nx in -1.0f32..1.0, ny in -1.0f32..1.0, nz in 0.1f32..1.0,
+        which in 0usize..25,
+    ) {
+        let (lights, m) = (lights(), material());
+        let model = models()[which % models().len()];
+        let viewer = Viewer::At(Vec3::new(0.0, 1.0, 5.0));
+        let (p, n) = (Vec3::new(px, py, pz), Vec3::new(nx, ny, nz));
+        let all = Scene { lights: &lights, ambient: Vec3::ZERO, viewer };
+        let got = Shader::new(model, &m, &all).shade_visible(p, n, v);
+        let mut want = Vec3::ZERO;
+        let mut mag = Vec3::ZERO;
+        for k in 0..3 {
+            let one = Scene { lights: &lights[k..k + 1], ..all };
+            let t = Shader::new(model, &m, &one).shade(p, n);
+            want += (t.diffuse + t.specular) * v[k];
+            mag += t.diffuse + t.specular;
+        }
+        // Each one-light term is rounded in a different order than the three-light sum: a few
+        // roundings (≤ 8U) of the summed magnitudes, all terms being ≥ 0.
+        let got = got.diffuse + got.specular;
+        prop_assert!((got - want).abs().cmple(mag * 8.0 * U + subnormal(8.0)).all(),
+            "{model:?}: {got} vs {want}");
+    }
+}
