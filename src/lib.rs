@@ -133,9 +133,10 @@ pub use halfway::{halfway, try_halfway};
 pub use incidence::Incidence;
 pub use lambert::Lambert;
 pub use light::{
-    DirectionalLight, Light, LightColors, LightSample, LightSource, PointLight, SpotLight,
+    DirectionalLight, Light, LightColors, LightColorsParams, LightSample, LightSource, PointLight,
+    SpotLight,
 };
-pub use material::Material;
+pub use material::{Material, MaterialParams};
 pub use model::{Model, ReflectionModel};
 pub use normal_matrix::{normal_matrix, transform_normal};
 pub use normalization::Normalization;

@@ -157,6 +157,39 @@ impl LightColors {
     }
 }
 
+/// A light's three colours by name, for construction that cannot be misordered (see
+/// [`MaterialParams`](crate::MaterialParams)). Checked by `LightColors::try_from`, with the checks of
+/// [`LightColors::try_new`]; `Default` is black.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{LightColors, LightColorsParams};
+/// let lamp = LightColors::try_from(LightColorsParams {
+///     diffuse: Vec3::splat(0.8),
+///     specular: Vec3::ONE,
+///     ..LightColorsParams::default()
+/// })?;
+/// assert_eq!(lamp.ambient(), Vec3::ZERO);
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LightColorsParams {
+    /// `La`, finite and `≥ 0` per channel.
+    pub ambient: Vec3,
+    /// `Ld`, finite and `≥ 0` per channel.
+    pub diffuse: Vec3,
+    /// `Ls`, finite and `≥ 0` per channel.
+    pub specular: Vec3,
+}
+
+impl TryFrom<LightColorsParams> for LightColors {
+    type Error = PhongError;
+    /// [`LightColors::try_new`] of the named colours.
+    fn try_from(p: LightColorsParams) -> Result<Self, PhongError> {
+        LightColors::try_new(p.ambient, p.diffuse, p.specular)
+    }
+}
+
 /// What a light delivers at one surface point: where it comes from and how strongly.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightSample {

@@ -197,3 +197,57 @@ impl Material {
         self.shininess
     }
 }
+
+/// A material's fields by name, for construction that cannot be misordered: three colours in a row
+/// in [`Material::try_new`] swap silently, named fields do not. Checked by `Material::try_from`
+/// (the same checks as [`Material::try_new`], naming the bad field); `Default` is black with
+/// shininess 0, so a literal can name only what it sets.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{Material, MaterialParams};
+/// let brass = Material::try_from(MaterialParams {
+///     ambient: Vec3::new(0.33, 0.22, 0.03),
+///     diffuse: Vec3::new(0.78, 0.57, 0.11),
+///     specular: Vec3::new(0.99, 0.94, 0.81),
+///     shininess: 27.9,
+///     ..MaterialParams::default()
+/// })?;
+/// assert_eq!(brass.shininess(), 27.9);
+/// assert!(Material::try_from(MaterialParams { shininess: -1.0, ..MaterialParams::default() }).is_err());
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MaterialParams {
+    /// `Ka`, finite and `≥ 0` per channel.
+    pub ambient: Vec3,
+    /// `Kd`, finite and `≥ 0` per channel.
+    pub diffuse: Vec3,
+    /// `Ks`, finite and `≥ 0` per channel.
+    pub specular: Vec3,
+    /// `Ke`, finite and `≥ 0` per channel.
+    pub emission: Vec3,
+    /// `s`, finite and `≥ 0`.
+    pub shininess: f32,
+}
+
+impl TryFrom<MaterialParams> for Material {
+    type Error = PhongError;
+    /// [`Material::try_new`] with the emission: the first bad field is reported.
+    fn try_from(p: MaterialParams) -> Result<Self, PhongError> {
+        Material::try_new(p.ambient, p.diffuse, p.specular, p.shininess)?
+            .try_with_emission(p.emission)
+    }
+}
+
+impl From<Material> for MaterialParams {
+    fn from(m: Material) -> Self {
+        MaterialParams {
+            ambient: m.ambient(),
+            diffuse: m.diffuse(),
+            specular: m.specular(),
+            emission: m.emission(),
+            shininess: m.shininess(),
+        }
+    }
+}
