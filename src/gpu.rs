@@ -26,7 +26,7 @@ use crate::{
 /// | 32 | `specular: vec3<f32>`, 44 `_pad1` |
 /// | 48 | `emission: vec3<f32>`, 60 `_pad2` |
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[allow(missing_docs)] // fields mirror Material's accessors one to one
 pub struct GpuMaterial {
     pub ambient: [f32; 3],
@@ -50,7 +50,7 @@ pub struct GpuMaterial {
 /// | 64 | `specular: vec3<f32>`, 76 `_pad0` |
 /// | 80 | `attenuation: vec4<f32>`: (c, l, q, 0), (P, ε, 0, 0), (r, 0, 0, 0) or (r, ε, 0, 0) |
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[allow(missing_docs)] // fields documented in the table above
 pub struct GpuLight {
     pub position: [f32; 3],
@@ -74,7 +74,7 @@ pub struct GpuLight {
 /// | 16 | `ambient: vec3<f32>` (scene ambient `Ia`), 28 `light_count: u32` |
 /// | 32 | `model: u32` (0 Lambert, 1 Phong, 2 Blinn-Phong), 36 `gate: u32` (0 step, 1 cosine, 2 none), 40 `normalization: u32` (0 none, 1 energy, 2 exact), 44 `_pad0` |
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[allow(missing_docs)] // fields documented in the table above
 pub struct GpuParams {
     pub viewer: [f32; 3],
@@ -91,25 +91,6 @@ pub struct GpuParams {
 const _: () = assert!(core::mem::size_of::<GpuMaterial>() == 64);
 const _: () = assert!(core::mem::size_of::<GpuLight>() == 96);
 const _: () = assert!(core::mem::size_of::<GpuParams>() == 48);
-
-#[allow(unsafe_code)]
-mod pod {
-    use super::{GpuLight, GpuMaterial, GpuParams};
-    // SAFETY: each type is #[repr(C)], made only of f32/u32 fields (for which every bit pattern is
-    // valid and all-zero is a valid value), and has no padding bytes (asserted by the size checks
-    // above: 16, 24 and 12 four-byte fields). That is what Zeroable and Pod require.
-    unsafe impl bytemuck::Zeroable for GpuMaterial {}
-    // SAFETY: as above.
-    unsafe impl bytemuck::Pod for GpuMaterial {}
-    // SAFETY: as above.
-    unsafe impl bytemuck::Zeroable for GpuLight {}
-    // SAFETY: as above.
-    unsafe impl bytemuck::Pod for GpuLight {}
-    // SAFETY: as above.
-    unsafe impl bytemuck::Zeroable for GpuParams {}
-    // SAFETY: as above.
-    unsafe impl bytemuck::Pod for GpuParams {}
-}
 
 impl From<&Material> for GpuMaterial {
     fn from(m: &Material) -> Self {
