@@ -103,6 +103,56 @@ impl<const N: usize> Expansion<N> {
             top
         }
     }
+
+    /// The sum as `top + t`, where `|t| < ulp(top)` and `t` has the sign of `below` (zero when `t`
+    /// is): Shewchuk's Compress, whose largest output component approximates the sum with an error
+    /// smaller than its own ulp (Shewchuk 1997, Theorem 23).
+    pub(crate) fn approximate(mut self) -> Approx {
+        self.compress();
+        let below = if self.len >= 2 {
+            self.c[self.len - 2]
+        } else {
+            0.0
+        };
+        Approx {
+            top: self.largest(),
+            below,
+        }
+    }
+
+    /// Shewchuk's Compress, in place: a top-down pass of exact sums, then a bottom-up one. Uses
+    /// TwoSum where Shewchuk uses FastTwoSum: the same result, with no precondition to check.
+    fn compress(&mut self) {
+        let n = self.len;
+        if n < 2 {
+            return;
+        }
+        let mut bottom = n - 1;
+        let mut q = self.c[bottom];
+        for i in (0..n - 1).rev() {
+            let (s, e) = two_sum(q, self.c[i]);
+            if e != 0.0 {
+                // bottom > i here (it starts above i and falls at most as fast), so bottom ≥ 1.
+                self.c[bottom] = s;
+                bottom -= 1;
+                q = e;
+            } else {
+                q = s;
+            }
+        }
+        let mut top = 0;
+        for i in bottom + 1..n {
+            let (s, e) = two_sum(self.c[i], q);
+            if e != 0.0 {
+                // top < i: the write never overtakes the read.
+                self.c[top] = e;
+                top += 1;
+            }
+            q = s;
+        }
+        self.c[top] = q;
+        self.len = top + 1;
+    }
 }
 
 /// An exact value written as `top + t` with `|t| < ulp(top)` and `t` of the sign of `below`
@@ -167,8 +217,11 @@ mod tests {
         // 1 + 2^-80 − 1 is 2^-80, which plain f64 addition loses.
         let e = Expansion::sum([1.0, 2f64.powi(-80), -1.0]);
         assert_eq!(e.sign(), 1.0);
+        assert_eq!(e.approximate().top, 2f64.powi(-80));
         let z = Expansion::sum([3.0, -1.5, -1.5, 0.0]);
         assert_eq!(z.sign(), 0.0);
+        let a = z.approximate();
+        assert_eq!((a.top, a.below), (0.0, 0.0));
     }
 
     #[test]
