@@ -89,6 +89,7 @@ pub mod batch;
 mod blinn_phong;
 mod color;
 mod error;
+mod expansion;
 mod face_forward;
 mod gate;
 pub mod gpu;

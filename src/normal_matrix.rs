@@ -2,6 +2,7 @@
 
 use glam::{Mat3, Vec3};
 
+use crate::expansion::{Approx, Expansion, product3, two_sum};
 use crate::normalize_or_zero;
 
 /// The normal matrix of a linear map `M`: its cofactor matrix with the sign of `det M`.
@@ -15,10 +16,12 @@ use crate::normalize_or_zero;
 /// inverse, so it stays defined when `M` is singular, and the sign factor makes a mirroring transform
 /// (`det M < 0`) give the same direction as the inverse transpose, `|det M| · M⁻ᵀ`.
 ///
-/// **Accuracy:** the cofactors and the determinant are computed in `f64` from the `f32` entries
-/// (each product of two entries is exact there), so the result is the exact matrix rounded once,
-/// and the sign of a nearly singular `M`'s determinant is right even where an `f32` determinant
-/// gets it wrong (which would flip every normal).
+/// **Accuracy:** `sign(det M)` is the exact sign of the determinant of the given `f32` entries, for
+/// every finite `M`: an exactly singular `M` gets `+1`, and a nearly singular one the right sign
+/// however close it is (a wrong sign would flip every normal). It is decided from an `f64`
+/// estimate with a rigorous error bound, and by exact expansion arithmetic (Shewchuk 1997) when the
+/// estimate is too close to zero to tell. Each entry of the result is the exact entry of
+/// `sign(det M) · cof(M)` (times the power of two below, if any) rounded to the nearest `f32`.
 ///
 /// **Domain:** any finite `Mat3`; for a 4×4 model matrix pass `Mat3::from_mat4(model)`. The result
 /// is *not* normalised: transform a normal with it, then renormalise, or use
@@ -31,7 +34,7 @@ use crate::normalize_or_zero;
 /// matrix times a power of two chosen to bring its largest entry near 1: the same normal
 /// directions, always finite.
 ///
-/// Derivation: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-normal-matrix).
+/// Derivation: docs/derivations.md, "The normal matrix".
 ///
 /// ```
 /// use glam::{Mat3, Vec3};
@@ -43,26 +46,24 @@ use crate::normalize_or_zero;
 /// // Mirroring keeps the inverse-transpose direction.
 /// let mirror = Mat3::from_diagonal(Vec3::new(-1.0, 1.0, 1.0));
 /// assert_eq!(phong::normal_matrix(mirror) * Vec3::X, mirror.inverse().transpose() * Vec3::X);
+/// // Exactly singular (the third column is twice the first): sign(0) = +1, never a flip.
+/// let a = Vec3::new(3.550105, 0.7529144, 0.15172768);
+/// let flat = Mat3::from_cols(a, Vec3::new(8.9, 0.0, 2.0), 2.0 * a);
+/// assert_eq!(phong::normal_matrix(flat) * Vec3::Z, flat.x_axis.cross(flat.y_axis));
 /// ```
 #[must_use]
 pub fn normal_matrix(m: Mat3) -> Mat3 {
-    let w = |v: Vec3| [v.x as f64, v.y as f64, v.z as f64];
-    let (a, b, c) = (w(m.x_axis), w(m.y_axis), w(m.z_axis));
-    let cross = |p: [f64; 3], q: [f64; 3]| {
-        [
-            p[1] * q[2] - p[2] * q[1],
-            p[2] * q[0] - p[0] * q[2],
-            p[0] * q[1] - p[1] * q[0],
-        ]
-    };
+    let (a, b, c) = (
+        m.x_axis.to_array(),
+        m.y_axis.to_array(),
+        m.z_axis.to_array(),
+    );
     let cols = [cross(b, c), cross(c, a), cross(a, b)];
-    // det M = a · (b × c), from the f64 cofactors.
-    let det = a[0] * cols[0][0] + a[1] * cols[0][1] + a[2] * cols[0][2];
-    let sign = if det < 0.0 { -1.0 } else { 1.0 };
+    let sign = det_sign(a, b, c, &cols[0]);
     let largest = cols
         .iter()
         .flatten()
-        .fold(0.0f64, |acc, x| acc.max(x.abs()));
+        .fold(0.0f64, |acc, x| acc.max(x.top.abs()));
     // Inside [2^-100, 2^100] every entry that matters fits f32 as it is; outside, rescale by a
     // power of two (exact) so the largest entry is about 1.
     let scale = if largest > 0.0 && largest.is_finite() && !(1e-30..=1e30).contains(&largest) {
@@ -73,14 +74,71 @@ pub fn normal_matrix(m: Mat3) -> Mat3 {
     } else {
         1.0
     };
-    let f = |col: [f64; 3]| {
-        Vec3::new(
-            (col[0] * sign * scale) as f32,
-            (col[1] * sign * scale) as f32,
-            (col[2] * sign * scale) as f32,
-        )
+    // ±2^k is exact on both parts (they stay far inside f64's normal range), so each entry is
+    // still the exact value, rounded to f32 once.
+    let k = sign * scale;
+    let f = |col: [Approx; 3]| {
+        Vec3::from_array(col.map(|x| {
+            Approx {
+                top: x.top * k,
+                below: x.below * k,
+            }
+            .round_to_f32()
+        }))
     };
     Mat3::from_cols(f(cols[0]), f(cols[1]), f(cols[2]))
+}
+
+/// `p × q` of `f32` vectors, each component kept exactly as `s + e`: its two products are exact in
+/// `f64`, and TwoSum keeps the rounding error of their difference.
+#[inline]
+fn cross(p: [f32; 3], q: [f32; 3]) -> [Approx; 3] {
+    let d = |i: usize, j: usize| {
+        let (s, e) = two_sum(p[i] as f64 * q[j] as f64, -(p[j] as f64 * q[i] as f64));
+        Approx { top: s, below: e }
+    };
+    [d(1, 2), d(2, 0), d(0, 1)]
+}
+
+/// The exact sign of `det M = a · (b × c)` with `sign(0) = +1`, given `b × c`.
+#[inline]
+fn det_sign(a: [f32; 3], b: [f32; 3], c: [f32; 3], bxc: &[Approx; 3]) -> f64 {
+    let w = |x: f32| x as f64;
+    let det = w(a[0]) * bxc[0].top + w(a[1]) * bxc[1].top + w(a[2]) * bxc[2].top;
+    // Error bound: each cofactor is one rounding of an exact difference (≤ ε·(|p| + |q|)), then one
+    // product and two sums, so |det − exact| ≤ 4ε·perm + O(ε²) with ε = 2⁻⁵³ and perm the
+    // determinant with every term made positive. 8ε = 2⁻⁵⁰ also covers the rounding of perm.
+    let pq = |i: usize, j: usize, k: usize| {
+        w(a[i]).abs() * ((w(b[j]) * w(c[k])).abs() + (w(b[k]) * w(c[j])).abs())
+    };
+    let perm = pq(0, 1, 2) + pq(1, 2, 0) + pq(2, 0, 1);
+    let bound = perm * DET_ERR;
+    if det > bound {
+        1.0
+    } else if det < -bound {
+        -1.0
+    } else {
+        exact_det_sign(a, b, c)
+    }
+}
+
+/// 2⁻⁵⁰: the relative error bound of the `f64` determinant estimate (see [`det_sign`]).
+const DET_ERR: f64 = 1.0 / 1_125_899_906_842_624.0;
+
+/// The sign of `det M` by exact expansion arithmetic, for estimates too close to zero to tell.
+#[cold]
+#[inline(never)]
+fn exact_det_sign(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> f64 {
+    let plus = |i: usize, j: usize, k: usize| product3(a[i], b[j], c[k]);
+    let minus = |i: usize, j: usize, k: usize| product3(a[i], b[j], c[k]).map(|x| -x);
+    let [t0, t1] = plus(0, 1, 2);
+    let [t2, t3] = minus(0, 2, 1);
+    let [t4, t5] = plus(1, 2, 0);
+    let [t6, t7] = minus(1, 0, 2);
+    let [t8, t9] = plus(2, 0, 1);
+    let [t10, t11] = minus(2, 1, 0);
+    let det = Expansion::sum([t0, t1, t2, t3, t4, t5, t6, t7, t8, t9, t10, t11]);
+    if det.sign() < 0.0 { -1.0 } else { 1.0 }
 }
 
 /// A normal carried through a normal matrix and renormalised: `normalize(NM · n)`.
