@@ -26,16 +26,71 @@
 //! A scene with any other light (spot lights, other attenuation forms) is shaded point by point
 //! by [`shade`](crate::shade): the same answer at scalar speed.
 //!
+//! ## Saturation
+//!
+//! The colours are applied as [`shade`](crate::shade) applies them: per channel, the lights are
+//! summed into three sums, each saturated at `f32::MAX` and only then multiplied by the material's
+//! colour, and the total is saturated again:
+//!
+//! ```text
+//! A = Ia + Σ f·La,   D = Σ f·d·Ld,   S = Σ min(f·w, MAX)·Ls        (d, w: diffuse, specular lobe)
+//! I = min( min(Ka·min(A, MAX), MAX) + min(Kd·min(D, MAX), MAX) + min(Ks·min(S, MAX), MAX) + Ke, MAX )
+//! ```
+//!
+//! Every weight `f·d` and `min(f·w, MAX)` is finite (a normalisation factor can be as large as
+//! `f32::MAX`, which is why `f·w` is clamped) and every colour is finite, so no product is `0·∞`:
+//! overflow saturates and never turns into NaN. Each term is therefore
+//! `min(K·min(exact sum, MAX), MAX)` up to rounding, the same in the kernel and in `shade`, also
+//! in the overflow regime; only at the threshold itself can an ulp decide between a finite sum and
+//! a saturated one. (When the colours, attenuation and normalisation of a call cannot bring any
+//! sum within a factor 2 of `f32::MAX` at any point, the kernels sum the products `Ka⊙La`, … per
+//! light instead, which keeps three accumulators rather than nine: the same values up to
+//! rounding, at the speed of the unsaturated equation.)
+//!
 //! ## Accuracy
 //!
-//! The kernel evaluates the same equation with the cosines formed from unnormalised vectors and
-//! approximate inverse norms (error per [`Level`]'s table), so each channel agrees with
-//! [`shade`](crate::shade) to a few `f32` ulps of the terms it sums, plus the pow strategy's error.
+//! The kernel forms its cosines from approximate inverse norms (error per [`Level`]'s table), so
+//! it evaluates the equation at slightly different cosines. Precisely, with `N`, `L`, `V` the
+//! exactly normalised vectors of the point (`L` and `V` from the `f32` differences
+//! `P_light − p` and `eye − p`, as `shade` forms them):
+//!
+//! - every cosine `N·L`, `N·V`, `L·V` it uses is within `η = 2e-6` of the exact one (two inverse
+//!   norms, relative error ≤ 3.5e-7 each, and the dot product's `3·2⁻²⁴`, about `1e-6`; the
+//!   margin covers the rounding of `2(N·L)(N·V) − L·V` and `2 + 2 L·V`, which perturb a cosine by
+//!   a few `2⁻²⁴`);
+//! - a point light's attenuation factor is within `2e-6` relative of the exact one;
+//! - Blinn-Phong's `(N·H)²` is the cosine form `max(N·L + N·V, 0)² / (2 + 2 L·V)` of those
+//!   cosines within `3·2⁻²⁴` relative;
+//! - the lobe power is within the strategy's
+//!   [`max_relative_error`](crate::PowStrategy::max_relative_error) (relative to
+//!   `max(lobe, 2⁻²⁴)`);
+//! - each of the three sums, and the total, rounds to within `(8 + 2·lights)·2⁻²⁴` relative (all
+//!   their terms are `≥ 0`).
+//!
+//! So each channel lies in the range the equation takes over those perturbations. To first order
+//! that range is, per light, `f·Ks·Ls·k·gate` (`k` the normalisation factor) times the lobe's
+//! change, plus `f·Kd·Ld·η` for the diffuse lobe. With `p` the exponent applied to the lobe's base
+//! (`s` for Phong, `s/2` for Blinn-Phong) the lobe's relative change is
+//!
+//! ```text
+//! Phong:        p · 5η / (R·V)                                      (R·V = 2(N·L)(N·V) − L·V)
+//! Blinn-Phong:  p · ( 4η / (N·L + N·V) + 2η / (2 + 2 L·V) )        (base t² / (2 + 2 L·V))
+//! ```
+//!
+//! plus the strategy's error. It grows with `p` and with the conditioning of the base: near a
+//! zero base (where for `p < 1` the change is up to `(5η)^p` absolute rather than relative), and
+//! for Blinn-Phong as `L → −V`, where `2 + 2 L·V` cancels. Where a cosine is within `η` of 0 the
+//! step gate and the clamps may decide either way. Energy-normalised lobes scale all of it by `k`,
+//! which exceeds 1. [`shade`](crate::shade) lies in the same range (its cosines are within a few
+//! `2⁻²⁴`), so the two agree to the range's width. `tests/batch.rs` checks this range at every
+//! level, on random and on adversarial input.
+//!
 //! Degenerate points (zero normal, viewer or light at the point, coordinates so large that a
 //! squared norm leaves `[1e-30, 1e30]`) are shaded by [`shade`](crate::shade) itself, so their
 //! documented results hold exactly. So are Blinn-Phong lanes with `2 + 2 L·V < 1e-2` (light and
-//! viewer nearly opposite, e.g. a grazing glint), where the kernels' cosine form of `(N·H)²`
-//! would lose its digits. From finite input no NaN is produced.
+//! viewer nearly opposite, e.g. a grazing glint), where `2η / (2 + 2 L·V)` above would exceed
+//! `4e-4` (`shade` computes `(N·H)²` from `L + V`, whose error grows only as
+//! `2⁻²⁴ / ‖L + V‖`). From finite input no NaN is produced.
 
 #[cfg(target_arch = "x86_64")]
 mod avx512;

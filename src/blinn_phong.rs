@@ -24,8 +24,10 @@ use crate::pow::PowStrategy;
 /// **Domain:** the cosines of unit `N`, `L`, `V` (see [`Incidence`]); `s ≥ 0`.
 ///
 /// **Degenerate cases:** at `L = −V` there is no halfway vector and the lobe is 0 (see
-/// [`Incidence::n_dot_h_squared`]). `0^0` is 0 (see [`PowStrategy`]). Unlike Phong there is no hard
-/// cut-off at low shininess: `N·H > 0` whenever `L` and `V` are both above the surface.
+/// [`Incidence::n_dot_h_squared`]); nor is there one when `L` or `V` is missing (the zero vector in
+/// [`Incidence::new`]), and without a normal `N·H` is 0: a missing `N`, `L` or `V` gives specular 0
+/// (and a missing `N` or `L` diffuse 0). `0^0` is 0 (see [`PowStrategy`]). Unlike Phong there is no
+/// hard cut-off at low shininess: `N·H > 0` whenever `L` and `V` are both above the surface.
 ///
 /// ```
 /// use glam::Vec3;

@@ -24,6 +24,16 @@ use glam::Vec3;
 /// unit, or the zero vector meaning "no such direction". The fields are public so batch code and
 /// renderers with their own cosines can fill them directly; keep them in `[−1, 1]` (and
 /// `n_dot_h_sq` in `[0, 1]`).
+///
+/// **A missing direction** (a zero `N`, `L` or `V` given to [`new`](Self::new)) gives cosines for
+/// which every lobe of every model is 0, and the diffuse lobe too when `N` or `L` is missing: the
+/// viewer at the point has no highlight and a light at the point lights nothing, as in Mesa. Every
+/// cosine involving the missing vector is 0 (its dot product with anything), `n_dot_h_sq` is 0
+/// (no halfway vector without both `L` and `V`), and without a normal there is no surface, so
+/// `l_dot_v` is 0 as well (otherwise Phong's `R·V = 2(N·L)(N·V) − L·V` would read `−L·V`, a
+/// highlight at `L = −V` with no surface to reflect it). In general: cosines with
+/// `l_dot_v = n_dot_h_sq = 0` and `n_dot_l = 0` or `n_dot_v = 0` have both specular lobes 0,
+/// which is also the state [`Incidence::default`] is in.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Incidence {
     /// `N·L`, the cosine of the angle of incidence.
@@ -43,11 +53,21 @@ impl Incidence {
     /// (N·L, N·V, L·V),   (N·H)² = max(N·(L+V), 0)² / ‖L+V‖²  (0 if L + V = 0)
     /// ```
     ///
+    /// **Degenerate input:** a zero vector is a missing direction (see the type's docs): its
+    /// cosines are 0, `(N·H)²` is 0 when `L` or `V` is missing, and `L·V` is 0 when `N` is, so
+    /// every specular lobe is 0, and the diffuse lobe too for a missing `N` or `L`.
+    ///
     /// ```
     /// use glam::Vec3;
-    /// let g = phong::Incidence::new(Vec3::Z, Vec3::Z, Vec3::X);
+    /// use phong::{BlinnPhong, Incidence, Phong, ReflectionModel};
+    /// let g = Incidence::new(Vec3::Z, Vec3::Z, Vec3::X);
     /// assert_eq!((g.n_dot_l, g.n_dot_v, g.l_dot_v), (1.0, 0.0, 0.0));
     /// assert!((g.n_dot_h_sq - 0.5).abs() < 1e-7);
+    /// // The viewer at the point: no highlight, whatever the model.
+    /// let at_eye = Incidence::new(Vec3::Z, Vec3::Z, Vec3::ZERO);
+    /// assert_eq!(BlinnPhong::default().specular(&at_eye, 16.0), 0.0);
+    /// assert_eq!(Phong::default().specular(&at_eye, 16.0), 0.0);
+    /// assert_eq!(Phong::default().diffuse(&at_eye), 1.0);
     /// ```
     #[must_use]
     #[inline]
@@ -59,15 +79,20 @@ impl Incidence {
         let t = crate::math::max_or(n.dot(sum), 0.0);
         let d = sum.length_squared();
         // ‖L+V‖² below the smallest normal f32 means L = −V to within 1e-19: no halfway vector.
-        let n_dot_h_sq = if d >= f32::MIN_POSITIVE {
+        // Nor is there one when L or V is missing (L + V would be the other one alone). A missing
+        // N already gives t = 0.
+        let both = l != Vec3::ZERO && v != Vec3::ZERO;
+        let n_dot_h_sq = if d >= f32::MIN_POSITIVE && both {
             crate::math::min_or(t * t / d, 1.0)
         } else {
             0.0
         };
+        // Without a surface no lobe exists: L·V is read as 0 so R·V = 2(N·L)(N·V) − L·V is 0 too.
+        let l_dot_v = if n != Vec3::ZERO { l.dot(v) } else { 0.0 };
         Incidence {
             n_dot_l: n.dot(l),
             n_dot_v: n.dot(v),
-            l_dot_v: l.dot(v),
+            l_dot_v,
             n_dot_h_sq,
         }
     }
@@ -80,7 +105,14 @@ impl Incidence {
     ///
     /// **Accuracy:** as good as [`new`](Self::new) except near `L = −V`, where `2 + 2 L·V` cancels
     /// (docs/accuracy.md measures it): prefer [`new`](Self::new) when the vectors are available.
-    /// **Domain:** cosines in `[−1, 1]`. **Returns** `n_dot_h_sq` in `[0, 1]`.
+    /// **Domain:** cosines in `[−1, 1]` of three *unit* vectors. **Returns** `n_dot_h_sq` in
+    /// `[0, 1]`.
+    ///
+    /// **What it can represent:** three cosines do not say whether a vector was missing (`N·V = 0`
+    /// and `L·V = 0` also describe a viewer on the horizon at right angles to the light, which has
+    /// a halfway vector), so every input is read as the cosines of unit vectors. For a missing
+    /// direction use [`new`](Self::new) with the zero vector, or build the cosines it documents
+    /// (e.g. [`Incidence::default`], where every lobe is 0).
     ///
     /// ```
     /// let g = phong::Incidence::from_cosines(0.5, 1.0, 0.5);
@@ -105,7 +137,8 @@ impl Incidence {
     }
 
     /// The cosines after normalising each vector with [`normalize_or_zero`](crate::normalize_or_zero).
-    /// Total: a zero or non-finite vector contributes zero cosines.
+    /// Total: a zero or non-finite vector is a missing direction, as in [`new`](Self::new) (every
+    /// specular lobe 0; the diffuse lobe 0 too if it is `n` or `l`).
     #[must_use]
     #[inline]
     pub fn from_unnormalized(n: Vec3, l: Vec3, v: Vec3) -> Self {

@@ -21,7 +21,11 @@
 //! inside the triangle (a terminator, Phong's cut-off at `s < 2`, a step gate, a spot cone edge), the
 //! bound falls back to the width of `F`'s interval: `G` and `F` both lie in it. The result is the
 //! smaller of the two, plus a rounding allowance, taken for the ambient, diffuse and specular parts
-//! of each light apart. A directional light's diffuse part has an exact form,
+//! of each light apart. The rounding allowance is the evaluation's own: each jet also carries how
+//! far an `f32` evaluation of its function can be from the exact value (every cosine off by an
+//! absolute `η`, the distance by its rounding, the lobe power by its pow strategy's error), and
+//! the intervals are widened by the same amounts, so both the Taylor and the width bound hold for
+//! the computed shadings (see [`gouraud_error_bound`]). A directional light's diffuse part has an exact form,
 //! `(Σ bᵢcᵢ)(1 − 1/‖Σ bᵢnᵢ‖)` plus a Jensen gap at the terminator, and gets the sharper bound
 //! `max(B(1/μ − 1), AB/(A+B))` from it. The derivation with every constant is in
 //! [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#shading-rate-bound) (section "Shading-rate bound").
@@ -34,24 +38,36 @@ use crate::math;
 use crate::model::Model;
 use crate::normalization::Normalization;
 use crate::normalize_or_zero;
+use crate::pow::PowStrategy;
 use crate::shade::{Scene, Viewer};
 use crate::{Attenuation, SpecularGate};
 
 /// `2/√3`: the largest `|N''|` per `|m'|²/|m|²` for `N = m/|m|` with `m'' = 0`.
 const TWO_OVER_SQRT3: f32 = 1.154_700_5;
 
-/// Absolute slack added to intervals computed from `f32` vertex values.
+/// Absolute slack added to intervals computed from `f32` vertex values (at least; the cosines get
+/// their rounding allowance `η` when it is larger).
 const ROUND_ABS: f32 = 1e-6;
+
+/// `f32`'s unit roundoff, `2⁻²⁴`.
+const U: f32 = f32::EPSILON * 0.5;
 
 /// Bounds on a scalar function on the triangle: its values lie in `[lo, hi]`, and along any
 /// straight unit-speed path inside the triangle `|F'| ≤ d1` and `F'` is Lipschitz with constant
 /// `d2`. `d2 = ∞` means "no such constant": only the interval is known.
+///
+/// `s1` bounds how far an `f32` evaluation of the function at one point can be from its exact
+/// value there, from its inputs' rounding: every cosine off by up to its allowance `η`, the
+/// distance to the light by up to its allowance, the lobe power by its strategy's error. The
+/// interval already contains those perturbed values (its inputs' intervals are widened by the
+/// allowances), so only the Taylor bound needs `s1` added.
 #[derive(Clone, Copy, Debug)]
 struct Jet {
     lo: f32,
     hi: f32,
     d1: f32,
     d2: f32,
+    s1: f32,
 }
 
 /// `a·b` with `0·∞ = 0`: a factor that is exactly zero kills an unknown derivative bound.
@@ -69,6 +85,7 @@ impl Jet {
             hi: x,
             d1: 0.0,
             d2: 0.0,
+            s1: 0.0,
         }
     }
 
@@ -79,11 +96,12 @@ impl Jet {
             hi,
             d1: f32::INFINITY,
             d2: f32::INFINITY,
+            s1: f32::INFINITY,
         }
     }
 
     fn is_zero(&self) -> bool {
-        self.lo == 0.0 && self.hi == 0.0 && self.d1 == 0.0 && self.d2 == 0.0
+        self.lo == 0.0 && self.hi == 0.0 && self.d1 == 0.0 && self.d2 == 0.0 && self.s1 == 0.0
     }
 
     fn abs_max(&self) -> f32 {
@@ -96,6 +114,7 @@ impl Jet {
             hi: self.hi + o.hi,
             d1: self.d1 + o.d1,
             d2: self.d2 + o.d2,
+            s1: self.s1 + o.s1,
         }
     }
 
@@ -105,6 +124,7 @@ impl Jet {
             hi: self.hi - o.lo,
             d1: self.d1 + o.d1,
             d2: self.d2 + o.d2,
+            s1: self.s1 + o.s1,
         }
     }
 
@@ -118,10 +138,12 @@ impl Jet {
             hi: self.hi * k,
             d1: self.d1 * k,
             d2: self.d2 * k,
+            s1: self.s1 * k,
         }
     }
 
-    /// `(fg)' = f'g + fg'`, `(fg)'' = f''g + 2f'g' + fg''`.
+    /// `(fg)' = f'g + fg'`, `(fg)'' = f''g + 2f'g' + fg''`; the perturbations the same way as the
+    /// first derivative (the intervals already hold the perturbed values).
     fn mul(self, o: Jet) -> Jet {
         if self.is_zero() || o.is_zero() {
             return Jet::ZERO;
@@ -138,6 +160,7 @@ impl Jet {
             hi: p[0].max(p[1]).max(p[2]).max(p[3]),
             d1: mulz(a, o.d1) + mulz(b, self.d1),
             d2: mulz(a, o.d2) + 2.0 * mulz(self.d1, o.d1) + mulz(b, self.d2),
+            s1: mulz(a, o.s1) + mulz(b, self.s1),
         }
     }
 
@@ -149,17 +172,21 @@ impl Jet {
             hi,
             d1: mulz(p1, self.d1),
             d2: mulz(p2, mulz(self.d1, self.d1)) + mulz(p1, self.d2),
+            s1: mulz(p1, self.s1),
         }
     }
 
-    /// `max(x, 0)`: the identity, zero, or a kink.
+    /// `max(x, 0)`: the identity, zero, or a kink (which is still 1-Lipschitz).
     fn positive_part(self) -> Jet {
         if self.lo >= 0.0 {
             self
         } else if self.hi <= 0.0 {
             Jet::ZERO
         } else {
-            Jet::rough(0.0, self.hi)
+            Jet {
+                s1: self.s1,
+                ..Jet::rough(0.0, self.hi)
+            }
         }
     }
 
@@ -174,21 +201,25 @@ impl Jet {
         }
     }
 
-    /// The lobe power `max(x, 0)^s` with the crate's `0^0 = 0` rule, for `x ≤ 1`, `s ≥ 0`.
-    fn lobe_pow(self, s: f32) -> Jet {
+    /// The lobe power `max(x, 0)^s` with the crate's `0^0 = 0` rule, for `x ≤ 1`, `s ≥ 0`, as
+    /// `pow` computes it: the exact power's jet, its interval widened and its `s1` increased by
+    /// the strategy's error (`max_relative_error` relative to `max(x^s, 2⁻²⁴)`).
+    fn lobe_pow(self, s: f32, pow: PowStrategy) -> Jet {
         let hi = self.hi.min(1.0);
         if hi <= 0.0 {
+            // Every strategy gives exactly 0 for a base ≤ 0.
             return Jet::ZERO;
         }
-        let top = math::powf(hi, s);
         if s == 0.0 {
+            // x^0 is exactly 1 for x > 0 with every strategy.
             return if self.lo > 0.0 {
                 Jet::constant(1.0)
             } else {
                 Jet::rough(0.0, 1.0)
             };
         }
-        if self.lo > 0.0 {
+        let top = math::powf(hi, s);
+        let exact = if self.lo > 0.0 {
             // x^(s−1) and x^(s−2) are monotone in x: their sup over [lo, hi] is at an end.
             let lo = self.lo;
             let p1 = s * math::powf(lo, s - 1.0).max(math::powf(hi, s - 1.0));
@@ -199,17 +230,31 @@ impl Jet {
             let p1 = s * math::powf(hi, s - 1.0);
             let p2 = s * (s - 1.0) * math::powf(hi, s - 2.0);
             self.compose(0.0, top, p1, p2)
+        } else if s >= 1.0 {
+            // Crossing 0 with a kink: Lipschitz still, with constant s·hi^(s−1).
+            Jet {
+                s1: mulz(s * math::powf(hi, s - 1.0), self.s1),
+                ..Jet::rough(0.0, top)
+            }
         } else {
             Jet::rough(0.0, top)
+        };
+        let eps = pow.max_relative_error();
+        let floor = PowStrategy::ERROR_FLOOR;
+        Jet {
+            lo: (exact.lo - eps * exact.lo.max(floor)).max(0.0),
+            hi: (exact.hi + eps * exact.hi.max(floor)).min(1.0),
+            s1: exact.s1 + eps * exact.hi.max(floor),
+            ..exact
         }
     }
 
     /// The half-width of the interval around the vertex values that holds a function with this
-    /// `d2`: the interpolation error bound `½·d2·r²`.
-    fn around(values: [f32; 3], d1: f32, d2: f32, r2: f32, lo: f32, hi: f32) -> Jet {
+    /// `d2`: the interpolation error bound `½·d2·r²`, plus the values' rounding allowance `eta`.
+    fn around(values: [f32; 3], d1: f32, d2: f32, r2: f32, lo: f32, hi: f32, eta: f32) -> Jet {
         let min = values[0].min(values[1]).min(values[2]);
         let max = values[0].max(values[1]).max(values[2]);
-        let delta = 0.5 * mulz(d2, r2) + ROUND_ABS;
+        let delta = 0.5 * mulz(d2, r2) + ROUND_ABS.max(eta);
         if !delta.is_finite() || !d1.is_finite() {
             return Jet::rough(lo, hi);
         }
@@ -218,6 +263,7 @@ impl Jet {
             hi: (max + delta).min(hi),
             d1,
             d2,
+            s1: eta,
         }
     }
 }
@@ -263,29 +309,30 @@ struct NormalJet {
 ///
 /// `(N·X)'' = N''·X + 2N'·X' + N·X''` and, since `m'' = 0`,
 /// `N''·X = −(‖m'⊥‖²/‖m‖²)(N·X) − 2(‖m‖'/‖m‖)(N'·X)`.
-fn normal_cosine(values: [f32; 3], n: &NormalJet, x: UnitJet, r2: f32) -> Jet {
+fn normal_cosine(values: [f32; 3], n: &NormalJet, x: UnitJet, r2: f32, eta: f32) -> Jet {
     let d1 = n.a + x.a;
     let mut c = 1.0f32;
     let mut jet = Jet::rough(-1.0, 1.0);
     // The bound on |N·X| refines d2, which refines the interval: two rounds.
     for _ in 0..2 {
         let d2 = n.k2 * c + n.cross + 2.0 * mulz(n.a, x.a) + x.b;
-        jet = Jet::around(values, d1, d2, r2, -1.0, 1.0);
+        jet = Jet::around(values, d1, d2, r2, -1.0, 1.0, eta);
         c = jet.abs_max().min(1.0);
     }
     jet
 }
 
 /// The cosine `X·Y` of two unit fields.
-fn plain_cosine(values: [f32; 3], x: UnitJet, y: UnitJet, r2: f32) -> Jet {
+fn plain_cosine(values: [f32; 3], x: UnitJet, y: UnitJet, r2: f32, eta: f32) -> Jet {
     let d1 = x.a + y.a;
     let d2 = x.b + 2.0 * mulz(x.a, y.a) + y.b;
-    Jet::around(values, d1, d2, r2, -1.0, 1.0)
+    Jet::around(values, d1, d2, r2, -1.0, 1.0, eta)
 }
 
 /// The attenuation factor as a jet of the distance `d ∈ [d0, d1]` (with `|d'| ≤ 1`,
-/// `|d''| ≤ 1/d0`).
-fn attenuation_jet(a: &Attenuation, d0: f32, d1: f32) -> Jet {
+/// `|d''| ≤ 1/d0`), whose computed value may be off by up to `eta` (the interval `[d0, d1]`
+/// includes that allowance).
+fn attenuation_jet(a: &Attenuation, d0: f32, d1: f32, eta: f32) -> Jet {
     let range_hi = a.factor(d0);
     let range_lo = a.factor(d1);
     let dist = Jet {
@@ -293,6 +340,7 @@ fn attenuation_jet(a: &Attenuation, d0: f32, d1: f32) -> Jet {
         hi: d1,
         d1: 1.0,
         d2: if d0 > 0.0 { 1.0 / d0 } else { f32::INFINITY },
+        s1: eta,
     };
     let rough = Jet::rough(range_lo, range_hi);
     match *a {
@@ -331,6 +379,7 @@ fn attenuation_jet(a: &Attenuation, d0: f32, d1: f32) -> Jet {
                 d1: 2.0 * d1 / ((d0 * d0 + 1.0) * (d0 * d0 + 1.0)),
                 d2: (6.0 * d1 * d1).max(2.0)
                     / ((d0 * d0 + 1.0) * (d0 * d0 + 1.0) * (d0 * d0 + 1.0)),
+                s1: 0.0,
             };
             windowed(dist, radius, d0, d1, g, range_lo, range_hi)
         }
@@ -346,6 +395,7 @@ fn attenuation_jet(a: &Attenuation, d0: f32, d1: f32) -> Jet {
                 hi: 1.0 / (d0 * d0),
                 d1: 2.0 / (d0 * d0 * d0),
                 d2: 6.0 / (d0 * d0 * d0 * d0),
+                s1: 0.0,
             };
             windowed(dist, radius, d0, d1, g, range_lo, range_hi)
         }
@@ -367,6 +417,7 @@ fn windowed(dist: Jet, radius: f32, d0: f32, d1: f32, g: Jet, lo: f32, hi: f32) 
         hi: 1.0,
         d1: 8.0 * x * x * x / radius,
         d2: (24.0 * x * x + 32.0 * x * x * x * x * x * x) / (radius * radius),
+        s1: 0.0,
     };
     // g's bounds are with respect to d; chain through d(P) before multiplying.
     let g = dist.compose(g.lo, g.hi, g.d1, g.d2);
@@ -550,6 +601,30 @@ struct Triangle {
     /// `μ = min ‖Σ bᵢnᵢ‖` over the triangle.
     mu: f32,
     normal: Option<NormalJet>,
+    /// The largest vertex coordinate magnitude `max ‖Pᵢ‖`: a point `Σ bᵢPᵢ` computed in `f32` is
+    /// within `3·2⁻²⁴` of it of the exact one.
+    pmax: f32,
+}
+
+/// The rounding allowance of a cosine computed by `shade` at a point of the triangle, with the
+/// light and the viewer at least `d_light` and `d_viewer` away (`∞` for directions):
+///
+/// ```text
+/// η = (8 + 6/μ)·u + 3u·max‖Pᵢ‖·(1/d_light + 1/d_viewer),      u = 2⁻²⁴
+/// ```
+///
+/// The interpolated normal `Σ bᵢnᵢ` is rounded by `3u` of `Σ bᵢ‖nᵢ‖ = 1`, which turns its
+/// direction by up to `3√3·u/μ`; normalising it and the light and view directions adds `2u` each,
+/// and the dot product `3u`. The point itself is off by `3u·max‖Pᵢ‖`, which turns a direction
+/// toward a point `d` away by that over `d`.
+fn cosine_allowance(tri: &Triangle, d_light: f32, d_viewer: f32) -> f32 {
+    let normal = if tri.mu > 0.0 {
+        6.0 / tri.mu
+    } else {
+        f32::INFINITY
+    };
+    let position = 3.0 * U * tri.pmax * (1.0 / d_light + 1.0 / d_viewer);
+    (8.0 + normal) * U + position
 }
 
 /// The bound for one light; see [`gouraud_error_bound`].
@@ -566,21 +641,40 @@ fn light_bound(
     let wd = (colors.diffuse() * material.diffuse()).max_element();
     let ws = (colors.specular() * material.specular()).max_element();
     let s = material.shininess();
+    let d_viewer = match viewer {
+        Viewer::At(eye) => distance_to_triangle(eye, p),
+        Viewer::Infinite(_) => f32::INFINITY,
+    };
+    // A point light's distance, as `shade` computes it, is off by the point's rounding and its
+    // own (the square root of a rounded sum of squares: 2u relative).
+    let distance_allowance = |d1: f32| 3.0 * U * tri.pmax + 2.0 * U * d1;
 
-    // The attenuation × spot factor f and the light direction's jet.
-    let (factor, l_jet, l_at) = match light {
-        Light::Directional(d) => (Jet::constant(1.0), UnitJet::FIXED, [d.direction(); 3]),
+    // The attenuation × spot factor f, the light direction's jet and the cosines' allowance.
+    let (factor, l_jet, l_at, eta) = match light {
+        Light::Directional(d) => (
+            Jet::constant(1.0),
+            UnitJet::FIXED,
+            [d.direction(); 3],
+            cosine_allowance(tri, f32::INFINITY, d_viewer),
+        ),
         Light::Point(pl) => {
             let d0 = distance_to_triangle(pl.position(), p);
             let d1 = p
                 .map(|q| crate::length(pl.position() - q))
                 .into_iter()
                 .fold(0.0, f32::max);
-            let f = attenuation_jet(&pl.attenuation(), d0, d1 * (1.0 + 1e-6));
+            let e = distance_allowance(d1);
+            let f = attenuation_jet(
+                &pl.attenuation(),
+                (d0 - e).max(0.0),
+                d1 * (1.0 + 1e-6) + e,
+                e,
+            );
             (
                 f,
                 UnitJet::toward_point(d0),
                 p.map(|q| light.sample(q).direction),
+                cosine_allowance(tri, d0, d_viewer),
             )
         }
         Light::Spot(sl) => {
@@ -589,16 +683,32 @@ fn light_bound(
                 .map(|q| crate::length(sl.position() - q))
                 .into_iter()
                 .fold(0.0, f32::max);
-            let f = attenuation_jet(&sl.attenuation(), d0, d1 * (1.0 + 1e-6));
+            let e = distance_allowance(d1);
+            let f = attenuation_jet(
+                &sl.attenuation(),
+                (d0 - e).max(0.0),
+                d1 * (1.0 + 1e-6) + e,
+                e,
+            );
             let lj = UnitJet::toward_point(d0);
+            let eta = cosine_allowance(tri, d0, d_viewer);
             let dirs = p.map(|q| normalize_or_zero(sl.position() - q));
             // q = −L·D has |q'| ≤ |L'|, |q''| ≤ |L''|.
-            let q = Jet::around(dirs.map(|l| -l.dot(sl.axis())), lj.a, lj.b, r2, -1.0, 1.0);
+            let q = Jet::around(
+                dirs.map(|l| -l.dot(sl.axis())),
+                lj.a,
+                lj.b,
+                r2,
+                -1.0,
+                1.0,
+                eta,
+            );
             let e = sl.exponent();
             let spot = if q.hi < sl.cos_cutoff() {
                 Jet::ZERO
             } else if q.lo >= sl.cos_cutoff() && q.lo > 0.0 {
-                q.lobe_pow(e)
+                // The spot factor's power is `powf` (PowStrategy::Exact).
+                q.lobe_pow(e, PowStrategy::Exact)
             } else {
                 Jet::rough(
                     0.0,
@@ -609,7 +719,7 @@ fn light_bound(
                     },
                 )
             };
-            (f.mul(spot), lj, dirs)
+            (f.mul(spot), lj, dirs, eta)
         }
     };
     if factor.is_zero() {
@@ -632,12 +742,19 @@ fn light_bound(
         nj,
         l_jet,
         r2,
+        eta,
     );
     let diffuse = c1.positive_part();
-    let (gate, normalization, has_specular, blinn) = match model {
-        Model::Lambert(m) => (SpecularGate::Step, m.normalization, false, false),
-        Model::Phong(m) => (m.gate, m.normalization, true, false),
-        Model::BlinnPhong(m) => (m.gate, m.normalization, true, true),
+    let (gate, normalization, pow, has_specular, blinn) = match model {
+        Model::Lambert(m) => (
+            SpecularGate::Step,
+            m.normalization,
+            PowStrategy::Exact,
+            false,
+            false,
+        ),
+        Model::Phong(m) => (m.gate, m.normalization, m.pow, true, false),
+        Model::BlinnPhong(m) => (m.gate, m.normalization, m.pow, true, true),
     };
     let wd = if normalization.is_normalized() {
         wd * (1.0 / core::f32::consts::PI)
@@ -650,8 +767,11 @@ fn light_bound(
     let diffuse_jet = finish(factor.mul(diffuse.scale(wd)), r2, 0.0);
     total += match light {
         Light::Directional(_) => {
+            // The exact-arithmetic bound, plus each evaluation's cosine off by up to η (the
+            // diffuse lobe is 1-Lipschitz in it) and the products' rounding.
             let c = [n[0].dot(l_at[0]), n[1].dot(l_at[1]), n[2].dot(l_at[2])];
-            let sharp = wd * directional_diffuse_error(c, tri.mu) + 32.0 * f32::EPSILON * wd;
+            let sharp =
+                wd * (directional_diffuse_error(c, tri.mu) + 2.0 * eta) + 32.0 * f32::EPSILON * wd;
             sharp.min(diffuse_jet)
         }
         _ => diffuse_jet,
@@ -671,6 +791,7 @@ fn light_bound(
             nj,
             v_jet,
             r2,
+            eta,
         );
         let c3 = plain_cosine(
             [
@@ -681,6 +802,7 @@ fn light_bound(
             l_jet,
             v_jet,
             r2,
+            eta,
         );
         let lobe = if blinn {
             // N·H = (N·L + N·V) / √(2 + 2 L·V); g(x) = (2 + 2x)^(−1/2) is decreasing and convex.
@@ -694,7 +816,7 @@ fn light_bound(
                 let mut nh = c1.add(c2).mul(g);
                 nh.lo = nh.lo.max(-1.0);
                 nh.hi = nh.hi.min(1.0);
-                nh.lobe_pow(s)
+                nh.lobe_pow(s, pow)
             } else {
                 Jet::rough(0.0, 1.0)
             }
@@ -703,7 +825,7 @@ fn light_bound(
             let mut rv = c1.mul(c2).scale(2.0).sub(c3);
             rv.lo = rv.lo.max(-1.0);
             rv.hi = rv.hi.min(1.0);
-            rv.lobe_pow(s)
+            rv.lobe_pow(s, pow)
         };
         let specular = if normalization.is_normalized() {
             let k = if blinn {
@@ -770,14 +892,18 @@ fn lobe_maxima(model: &Model, s: f32) -> (f32, f32) {
 
 /// `min(interval width, ½·d2·r²)` plus the rounding allowance.
 fn finish(f: Jet, r2: f32, s: f32) -> f32 {
+    // Both shadings' values lie in the interval, perturbed inputs included; or: the exact values
+    // differ by at most ½·d2·r², and each computed value is within s1 of its exact one (the
+    // Gouraud value interpolates three computed values, so it is within s1 too).
     let width = (f.hi - f.lo).max(0.0);
-    let taylor = 0.5 * mulz(f.d2, r2);
+    let taylor = 0.5 * mulz(f.d2, r2) + 2.0 * f.s1;
     let b = if taylor.is_finite() {
         width.min(taylor)
     } else {
         width
     };
-    // f32 evaluation of both shadings: a few ulps per operation, amplified by the power s.
+    // f32 evaluation of both shadings: a few ulps per operation of the products and sums,
+    // amplified by the power s.
     let rounding = f.abs_max() * (32.0 + 4.0 * s) * f32::EPSILON;
     let out = b + rounding;
     if out.is_finite() { out } else { f32::MAX }
@@ -809,11 +935,25 @@ fn finish(f: Jet, r2: f32, s: f32) -> f32 {
 /// are normalised here, and per-pixel shading is assumed to interpolate these unit normals with
 /// the same, perspective-correct, barycentric weights as Gouraud interpolates colours). The
 /// material's constant colours are used: per-pixel texture lookups are not covered. Any of the
-/// crate's models, gates, normalisations, lights and attenuation forms.
+/// crate's models, gates, normalisations, pow strategies, lights and attenuation forms.
 ///
-/// **Returns** a finite value `≥ 0` (saturated at `f32::MAX`). It is rigorous for exact
-/// arithmetic and includes an allowance of `(32 + 4s)` ulps of the light's largest contribution
-/// for `f32` rounding.
+/// **Returns** a finite value `≥ 0` (saturated at `f32::MAX`). It bounds the difference of the
+/// two shadings as [`shade`](crate::shade) computes them in `f32`, with the barycentric point and
+/// the interpolated normal `Σ bᵢnᵢ` formed in `f32` too: besides the exact-arithmetic bound above
+/// it allows, per light and part, for
+///
+/// - every cosine `shade` computes being off by up to
+///   `η = (8 + 6/μ)·2⁻²⁴ + 3·2⁻²⁴·max‖Pᵢ‖·(1/d_light + 1/d_viewer)` (`d` the distance from the
+///   triangle to a point light or an eye; the term is 0 for directions). This is an *absolute*
+///   error: a cosine near 0 formed from terms near ±1, e.g. a grazing light, is off by a few
+///   `2⁻²⁴` whatever its own size. The part's sensitivity to it is carried alongside its
+///   derivatives;
+/// - the distance to a point light being off by `3·2⁻²⁴·max‖Pᵢ‖ + 2·2⁻²⁴·d`;
+/// - the model's pow strategy: its lobe is within
+///   [`PowStrategy::max_relative_error`](crate::PowStrategy::max_relative_error) of `x^s`,
+///   relative to `max(x^s, 2⁻²⁴)` (the approximate strategies' flush of tiny lobes to 0
+///   included);
+/// - `(32 + 4s)` ulps of the light's largest contribution for the products and sums.
 ///
 /// **Degenerate input:** a zero-area triangle, normals that cancel inside the triangle, the light
 /// or the eye on the triangle: the bound falls back to the interval width of each light's
@@ -857,6 +997,10 @@ where
         r2: enclosing_radius_squared(positions),
         mu: distance_to_triangle(Vec3::ZERO, n),
         normal: normal_jet(positions, n),
+        pmax: positions
+            .iter()
+            .map(|q| crate::length(*q))
+            .fold(0.0, f32::max),
     };
     // The constant terms are interpolated exactly but for rounding: a few ulps of their size.
     let constant = material.emission() + material.ambient() * scene.ambient.max(Vec3::ZERO);

@@ -11,6 +11,10 @@
 //! Blinn: (N·H)² = max(N·L̂ + N·V̂, 0)² / (2 + 2 L̂·V̂)    (no halfway vector, no sqrt)
 //! ```
 //!
+//! The colours follow the saturation rule in the module docs of `batch`: per channel three sums
+//! over the lights, `Ia + Σ f·La`, `Σ f·max(N·L, 0)·Ld` and `Σ min(f·w, MAX)·Ls` (`w` the gated,
+//! normalised specular lobe), each saturated and then multiplied by the material's colour once.
+//!
 //! The inverse square root is the one level-specific operation (passed in as `rsqrt`). Points the
 //! fast path cannot represent (a squared norm outside `[1e-30, 1e30]`: a zero or huge normal, the
 //! viewer or a light at the point, huge coordinates) are flagged and shaded again by the scalar
@@ -56,16 +60,23 @@ pub(crate) enum ViewK {
     Infinite(Vec3),
 }
 
-/// A light's kernel form with its colours already multiplied by the material's and the model's
-/// scale factors.
+/// A light's kernel form with its colours. In general the material's colours are applied once
+/// per point, to the sums over the lights (see [`chunk`]), as [`shade`](crate::shade) applies
+/// them; when nothing can overflow ([`Setup::folded`]) the portable kernel uses the products
+/// instead, which give the same values up to rounding with a third of the accumulators.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PreparedLight {
     pub(crate) lane: LaneLight,
-    /// `Ka ⊙ La`.
+    /// `La`.
+    pub(crate) la: Vec3,
+    /// `Ld · diffuse scale` (the scale is 1 or `1/π`, so this cannot overflow).
+    pub(crate) ld: Vec3,
+    /// `Ls`. The specular scale, which can be huge, is applied per lane and clamped.
+    pub(crate) ls: Vec3,
+    /// `Ka ⊙ La`, `Kd ⊙ Ld · diffuse scale` and `Ks ⊙ Ls · specular scale`: finite, and used,
+    /// only when the call is [`folded`](Setup::folded).
     pub(crate) ka: Vec3,
-    /// `Kd ⊙ Ld · diffuse scale`.
     pub(crate) kd: Vec3,
-    /// `Ks ⊙ Ls · specular scale`.
     pub(crate) ks: Vec3,
 }
 
@@ -80,14 +91,68 @@ pub(crate) fn prepare_light<L: BatchLight>(
     material: &Material,
     lm: &LaneModel,
 ) -> PreparedLight {
-    let sat = Vec3::splat(math::MAX);
     let colors = light.colors();
+    let ld = colors.diffuse() * lm.diffuse_scale;
     PreparedLight {
         lane: light.lane_light().unwrap_or(LaneLight::AmbientOnly),
-        ka: (colors.ambient() * material.ambient()).min(sat),
-        kd: (colors.diffuse() * material.diffuse()).min(sat) * lm.diffuse_scale,
-        ks: (colors.specular() * material.specular()).min(sat) * lm.specular_scale,
+        la: colors.ambient(),
+        ld,
+        ls: colors.specular(),
+        ka: colors.ambient() * material.ambient(),
+        kd: ld * material.diffuse(),
+        ks: colors.specular() * material.specular() * lm.specular_scale,
     }
+}
+
+/// The most a light's attenuation factor can be: 1, or `1/max(c, MIN_DENOMINATOR)` (the
+/// denominator `c + l·d + q·d²` is at least `c`).
+fn factor_max(lane: &LaneLight) -> f64 {
+    match *lane {
+        LaneLight::Point {
+            coefficients: [c, _, _],
+            ..
+        } => 1.0 / f64::from(c.max(Attenuation::MIN_DENOMINATOR)),
+        _ => 1.0,
+    }
+}
+
+/// Whether no sum, product or total of the saturation rule can come near `f32::MAX` for any
+/// point: every lobe and cosine is at most 1 (plus rounding), so each sum is at most its lights'
+/// largest factor times their colours. Then the products `Ka ⊙ La` etc. can be summed instead
+/// (half of `f32::MAX` leaves room for rounding).
+fn cannot_overflow<L: BatchLight>(
+    scene: &Scene<'_, L>,
+    material: &Material,
+    lm: &LaneModel,
+) -> bool {
+    let d3 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
+    let (mut a, mut d, mut s) = (
+        d3(crate::light::sanitize_colour(scene.ambient)),
+        [0.0; 3],
+        [0.0; 3],
+    );
+    let spec = if lm.lobe == Lobe::None {
+        0.0
+    } else {
+        f64::from(lm.specular_scale)
+    };
+    for light in scene.lights {
+        let f = light.lane_light().map_or(1.0, |l| factor_max(&l));
+        let c = light.colors();
+        let (la, ld, ls) = (d3(c.ambient()), d3(c.diffuse()), d3(c.specular()));
+        for i in 0..3 {
+            a[i] += f * la[i];
+            d[i] += f * ld[i];
+            s[i] += f * spec * ls[i];
+        }
+    }
+    let (ka, kd, ks, ke) = (
+        d3(material.ambient()),
+        d3(material.diffuse()),
+        d3(material.specular()),
+        d3(material.emission()),
+    );
+    (0..3).all(|i| ka[i] * a[i] + kd[i] * d[i] + ks[i] * s[i] + ke[i] < 0.5 * f64::from(math::MAX))
 }
 
 /// Everything constant over one call.
@@ -102,7 +167,14 @@ pub(crate) struct Setup<'a, M, L> {
     pub(crate) flush: f32,
     pub(crate) view: ViewK,
     pub(crate) specular_on: bool,
-    /// `Ke + Ka ⊙ Ia`.
+    /// Whether the specular weight is scaled (a normalised model), and so must be clamped.
+    pub(crate) scaled: bool,
+    /// Whether nothing can overflow in this call, so the portable kernel may sum the products of
+    /// light and material colours (three accumulators, not nine: the difference is rounding).
+    pub(crate) folded: bool,
+    /// `Ia`, sanitised: where the ambient sum starts.
+    pub(crate) ambient: Vec3,
+    /// `Ke + Ka ⊙ Ia`: where a folded call's single sum starts.
     pub(crate) base: Vec3,
     /// The first lights, prepared; all of them when `all_prepared`.
     pub(crate) prepared: [PreparedLight; PREPARED],
@@ -125,26 +197,18 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
     pub(crate) fn new(model: &'a M, material: &'a Material, scene: &'a Scene<'a, L>) -> Self {
         let lm = model.lane_model(material.shininess());
         let plan = lm.pow.plan(lm.exponent);
-        let n = match plan {
-            PowPlan::Squaring { n } | PowPlan::Split { n, .. } => n,
-            _ => 0,
-        };
-        let flush = if n > 0 {
-            math::powf(2.0, -100.0 / n as f32)
-        } else {
-            0.0
-        };
+        let flush = flush_below(plan);
         let view = match scene.viewer {
             Viewer::At(eye) => ViewK::At(eye),
             Viewer::Infinite(d) => ViewK::Infinite(crate::normalize_or_zero(d)),
         };
         let specular_on =
             lm.lobe != Lobe::None && !matches!(view, ViewK::Infinite(v) if v == Vec3::ZERO);
-        let sat = Vec3::splat(math::MAX);
-        let ia = crate::light::sanitize_colour(scene.ambient);
-        let base = (material.emission() + (ia * material.ambient()).min(sat)).min(sat);
         let mut prepared = [PreparedLight {
             lane: LaneLight::AmbientOnly,
+            la: Vec3::ZERO,
+            ld: Vec3::ZERO,
+            ls: Vec3::ZERO,
             ka: Vec3::ZERO,
             kd: Vec3::ZERO,
             ks: Vec3::ZERO,
@@ -152,6 +216,9 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
         for (slot, light) in prepared.iter_mut().zip(scene.lights) {
             *slot = prepare_light(light, material, &lm);
         }
+        let folded = cannot_overflow(scene, material, &lm);
+        let ambient = crate::light::sanitize_colour(scene.ambient);
+        let sat = Vec3::splat(math::MAX);
         Setup {
             prepared,
             all_prepared: scene.lights.len() <= PREPARED,
@@ -163,8 +230,25 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
             flush,
             view,
             specular_on,
-            base,
+            scaled: lm.specular_scale != 1.0,
+            folded,
+            ambient,
+            base: (material.emission() + (ambient * material.ambient()).min(sat)).min(sat),
         }
+    }
+}
+
+/// The base below which a plan's repeated squaring would give a lobe below `2⁻¹⁰⁰`: such bases
+/// are set to 0 first, so no subnormal is ever produced (0 when the plan does not square).
+pub(crate) fn flush_below(plan: PowPlan) -> f32 {
+    let n = match plan {
+        PowPlan::Squaring { n } | PowPlan::Split { n, .. } => n,
+        _ => 0,
+    };
+    if n > 0 {
+        math::powf(2.0, -100.0 / n as f32)
+    } else {
+        0.0
     }
 }
 
@@ -230,9 +314,16 @@ fn pow_lanes(plan: PowPlan, flush: f32, x: Lanes) -> Lanes {
 /// level at high shininess. For random directions about 0.25% of lanes are affected.
 pub(super) const BLINN_DEN_MIN: f32 = 1e-2;
 
-/// Shades 16 points. Returns the colours and which lanes need the scalar path.
+/// Shades 16 points. Returns the colours and which lanes need the scalar path. `FOLDED` is
+/// [`Setup::folded`]: sum the products of light and material colours (nothing can overflow)
+/// instead of the three sums of the saturation rule.
 #[inline(always)]
-fn chunk<M, L, R>(k: &Setup<'_, M, L>, p: &[Lanes; 3], n: &[Lanes; 3], rsqrt: &R) -> [Lanes; 4]
+fn chunk<M, L, R, const FOLDED: bool>(
+    k: &Setup<'_, M, L>,
+    p: &[Lanes; 3],
+    n: &[Lanes; 3],
+    rsqrt: &R,
+) -> [Lanes; 4]
 where
     M: BatchModel,
     L: BatchLight,
@@ -270,17 +361,28 @@ where
     };
     let nv = lanes!(|i| ux[i] * vx[i] + uy[i] * vy[i] + uz[i] * vz[i]);
 
-    let mut acc_r = [k.base.x; W];
-    let mut acc_g = [k.base.y; W];
-    let mut acc_b = [k.base.z; W];
+    // Per channel, three sums over the lights, each multiplied by the material's colour once at
+    // the end (see the module docs' saturation rule):
+    //   amb = Ia + Σ f·La,   dif = Σ f·max(N·L, 0)·Ld,   spe = Σ min(f·ws, MAX)·Ls.
+    // Folded, `amb` alone holds Ke + Ka⊙Ia + Σ f·(Ka⊙La + max(N·L, 0)·Kd⊙Ld + ws·Ks⊙Ls).
+    let start = if FOLDED { k.base } else { k.ambient };
+    let mut amb = [[start.x; W], [start.y; W], [start.z; W]];
+    let mut dif = [[0.0f32; W]; 3];
+    let mut spe = [[0.0f32; W]; 3];
     let lm = &k.lm;
     for j in 0..k.scene.lights.len() {
-        let PreparedLight { lane, ka, kd, ks } = k.light(j);
-        let (lx, ly, lz, att) = match lane {
+        let light = k.light(j);
+        let (la, ld, ls) = if FOLDED {
+            (light.ka, light.kd, light.ks)
+        } else {
+            (light.la, light.ld, light.ls)
+        };
+        let (la, ld, ls) = (la.to_array(), ld.to_array(), ls.to_array());
+        let (lx, ly, lz, att) = match light.lane {
             LaneLight::AmbientOnly => {
-                acc_r = lanes!(|i| acc_r[i] + ka.x);
-                acc_g = lanes!(|i| acc_g[i] + ka.y);
-                acc_b = lanes!(|i| acc_b[i] + ka.z);
+                for c in 0..3 {
+                    amb[c] = lanes!(|i| amb[c][i] + la[c]);
+                }
                 continue;
             }
             LaneLight::Directional(d) => ([d.x; W], [d.y; W], [d.z; W], [1.0f32; W]),
@@ -311,10 +413,17 @@ where
             }
         };
         let nl = lanes!(|i| ux[i] * lx[i] + uy[i] * ly[i] + uz[i] * lz[i]);
+        // f and f·max(N·L, 0) are finite (f ≤ 1/MIN_DENOMINATOR), and so is every colour: no
+        // product below is 0·∞, and the sums of terms ≥ 0 can reach +∞ but never NaN.
         let wd = lanes!(|i| att[i] * nl[i].max(0.0));
-        acc_r = lanes!(|i| acc_r[i] + att[i] * ka.x + wd[i] * kd.x);
-        acc_g = lanes!(|i| acc_g[i] + att[i] * ka.y + wd[i] * kd.y);
-        acc_b = lanes!(|i| acc_b[i] + att[i] * ka.z + wd[i] * kd.z);
+        for c in 0..3 {
+            if FOLDED {
+                amb[c] = lanes!(|i| amb[c][i] + att[i] * la[c] + wd[i] * ld[c]);
+            } else {
+                amb[c] = lanes!(|i| amb[c][i] + att[i] * la[c]);
+                dif[c] = lanes!(|i| dif[c][i] + wd[i] * ld[c]);
+            }
+        }
         if !k.specular_on {
             continue;
         }
@@ -346,16 +455,49 @@ where
             SpecularGate::Cosine => lanes!(|i| att[i] * nl[i].max(0.0) * lobe[i]),
             SpecularGate::None => lanes!(|i| att[i] * lobe[i]),
         };
-        acc_r = lanes!(|i| acc_r[i] + ws[i] * ks.x);
-        acc_g = lanes!(|i| acc_g[i] + ws[i] * ks.y);
-        acc_b = lanes!(|i| acc_b[i] + ws[i] * ks.z);
+        if FOLDED {
+            // The scale is in `ks`, and nothing overflows.
+            for c in 0..3 {
+                amb[c] = lanes!(|i| amb[c][i] + ws[i] * ls[c]);
+            }
+            continue;
+        }
+        // A normalisation factor can be as large as f32::MAX: f·factor·lobe is clamped there (as
+        // `shade` clamps its weight) before it meets a colour, so a zero lobe stays 0.
+        let ws = if k.scaled {
+            let scale = lm.specular_scale;
+            lanes!(|i| (ws[i] * scale).min(math::MAX))
+        } else {
+            ws
+        };
+        for c in 0..3 {
+            spe[c] = lanes!(|i| spe[c][i] + ws[i] * ls[c]);
+        }
     }
-    [
-        lanes!(|i| acc_r[i].min(math::MAX)),
-        lanes!(|i| acc_g[i].min(math::MAX)),
-        lanes!(|i| acc_b[i].min(math::MAX)),
-        bad,
-    ]
+    if FOLDED {
+        return [
+            lanes!(|i| amb[0][i].min(math::MAX)),
+            lanes!(|i| amb[1][i].min(math::MAX)),
+            lanes!(|i| amb[2][i].min(math::MAX)),
+            bad,
+        ];
+    }
+    let (ka, kd, ks, ke) = (
+        k.material.ambient().to_array(),
+        k.material.diffuse().to_array(),
+        k.material.specular().to_array(),
+        k.material.emission().to_array(),
+    );
+    // Each sum saturates at f32::MAX before the material's colour multiplies it; the total
+    // saturates again (`shade`'s order: ambient + diffuse + specular + emission).
+    let sat = |x: f32| x.min(math::MAX);
+    let out = |c: usize| {
+        lanes!(|i| sat(sat(ka[c] * sat(amb[c][i]))
+            + sat(kd[c] * sat(dif[c][i]))
+            + sat(ks[c] * sat(spe[c][i]))
+            + ke[c]))
+    };
+    [out(0), out(1), out(2), bad]
 }
 
 /// Re-shades the flagged lanes with the scalar path.
@@ -400,6 +542,26 @@ where
     L: BatchLight,
     R: Fn(Lanes) -> Lanes,
 {
+    if k.folded {
+        run_with::<M, L, R, true>(k, pos, nor, out, rsqrt)
+    } else {
+        run_with::<M, L, R, false>(k, pos, nor, out, rsqrt)
+    }
+}
+
+#[inline(always)]
+fn run_with<M, L, R, const FOLDED: bool>(
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    out: SoaRgb<'_>,
+    rsqrt: R,
+) -> usize
+where
+    M: BatchModel,
+    L: BatchLight,
+    R: Fn(Lanes) -> Lanes,
+{
     let len = pos.len().min(nor.len()).min(out.len());
     let (px, py, pz) = (&pos.x[..len], &pos.y[..len], &pos.z[..len]);
     let (nx, ny, nz) = (&nor.x[..len], &nor.y[..len], &nor.z[..len]);
@@ -408,7 +570,7 @@ where
     while i + W <= len {
         let p = [load(px, i), load(py, i), load(pz, i)];
         let n = [load(nx, i), load(ny, i), load(nz, i)];
-        let mut c = chunk(k, &p, &n, &rsqrt);
+        let mut c = chunk::<M, L, R, FOLDED>(k, &p, &n, &rsqrt);
         // An integer OR reduction (a float max would be a serial chain).
         if c[3].iter().fold(0u32, |a, &b| a | b.to_bits()) != 0 {
             c = fixup(k, p, n, c, W);
@@ -430,11 +592,34 @@ where
             load_tail(ny, i, count),
             load_tail(nz, i, count),
         ];
-        let c = chunk(k, &p, &n, &rsqrt);
+        let c = chunk::<M, L, R, FOLDED>(k, &p, &n, &rsqrt);
         let c = fixup(k, p, n, c, count);
         r[i..].copy_from_slice(&c[0][..count]);
         g[i..].copy_from_slice(&c[1][..count]);
         b[i..].copy_from_slice(&c[2][..count]);
     }
     len
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pow::PowStrategy;
+    use crate::pow::error_bounds::worst_over_domain;
+
+    #[test]
+    fn the_portable_lobe_power_meets_each_strategys_bound() {
+        // The kernels' pow differs from the scalar one only in flushing bases whose power would
+        // fall below 2⁻¹⁰⁰, an absolute error under 2⁻¹⁰⁰, far below the bound's 2⁻²⁴ floor.
+        for p in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+            let (e, x, s) = worst_over_domain(p, |s, xs| {
+                let plan = p.plan(s);
+                pow_lanes(plan, flush_below(plan), *xs)
+            });
+            assert!(
+                e <= p.max_relative_error() as f64,
+                "{p:?}: err {e:e} at x = {x:e}, s = {s:e}"
+            );
+        }
+    }
 }
