@@ -141,8 +141,9 @@ fn accuracy_md() -> String {
         ]),
     );
     o.push_str(
-        "`face_forward` is a sign decision: an error of 2 means `f32` rounded `Nref·V` to the \
-         other sign, which can happen only within a few ulps of the tie.\n\n",
+        "`face_forward` is a sign decision, taken on the exact sign of `Nref·V` (each `f32` \
+         product is exact in `f64`, and a tie is settled by an exact sum): an error of 2 would \
+         mean the wrong side was chosen.\n\n",
     );
 
     o.push_str("## Attenuation and spot lights\n\n");
@@ -332,9 +333,10 @@ fn sliver_section(o: &mut String) {
          vertices agree to within a factor of 2: far from the origin (offset ≫ size). Near the \
          origin an edge such as `0.3 − (−0.6)` rounds, the rounding moves a vertex by about \
          `2⁻²⁴ · size`, and a sliver of height `aspect · size` turns by `2⁻²⁴ / aspect` \
-         radians: no cross-product trick recovers that, as the offset-1 row shows. Widening the \
-         vertices to `f64` before subtracting (`phong::triangle_normal`) makes the edges exact \
-         everywhere, and costs nothing that matters for a once-per-mesh operation.\n\n",
+         radians: no cross-product trick recovers that, as the offset-1 row shows. `phong::triangle_normal` \
+         computes each component of the area vector as an exact sum of the six `f32` \
+         coordinate products (each exact in `f64`), rounded once, so no edge is ever rounded; \
+         the cost does not matter for a once-per-mesh operation.\n\n",
     );
 }
 

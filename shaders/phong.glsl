@@ -196,19 +196,20 @@ Terms shade_point(vec3 position, vec3 normal) {
         float nv = dot(n, v);
         float lv = dot(l, v);
         float wd = min(f * diffuse_lobe(params.normalization, nl), F32_MAX);
-        diffuse += min(min(light.diffuse * material.diffuse, sat) * wd, sat);
+        diffuse += min(light.diffuse * wd, sat);
         if (specular_on) {
             float spec_lobe = params.model == 1u
                 ? phong_specular(params.gate, params.normalization, nl, nv, lv, material.shininess)
                 : blinn_specular(params.gate, params.normalization, n, l, v, nl, material.shininess);
             float ws = min(f * spec_lobe, F32_MAX);
-            specular += min(min(light.specular * material.specular, sat) * ws, sat);
+            specular += min(light.specular * ws, sat);
         }
     }
     Terms t;
     t.ambient = vec4(min(min(ambient_light, sat) * material.ambient, sat), 0.0);
-    t.diffuse = vec4(min(diffuse, sat), 0.0);
-    t.specular = vec4(min(specular, sat), 0.0);
+    // The material is applied once to each saturated light sum, as on the CPU.
+    t.diffuse = vec4(min(min(diffuse, sat) * material.diffuse, sat), 0.0);
+    t.specular = vec4(min(min(specular, sat) * material.specular, sat), 0.0);
     t.emission = vec4(material.emission, 0.0);
     return t;
 }

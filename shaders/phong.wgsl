@@ -190,7 +190,7 @@ fn shade_point(p: Params, m: Material, position: vec3<f32>, normal: vec3<f32>) -
         let nv = dot(n, v);
         let lv = dot(l, v);
         let wd = min(f * diffuse_lobe(p.normalization, nl), F32_MAX);
-        diffuse += min(min(light.diffuse * m.diffuse, sat) * wd, sat);
+        diffuse += min(light.diffuse * wd, sat);
         if (specular_on) {
             var spec_lobe: f32;
             if (p.model == 1u) {
@@ -199,13 +199,14 @@ fn shade_point(p: Params, m: Material, position: vec3<f32>, normal: vec3<f32>) -
                 spec_lobe = blinn_specular(p, n, l, v, nl, m.shininess);
             }
             let ws = min(f * spec_lobe, F32_MAX);
-            specular += min(min(light.specular * m.specular, sat) * ws, sat);
+            specular += min(light.specular * ws, sat);
         }
     }
     var t: Terms;
     t.ambient = vec4<f32>(min(min(ambient_light, sat) * m.ambient, sat), 0.0);
-    t.diffuse = vec4<f32>(min(diffuse, sat), 0.0);
-    t.specular = vec4<f32>(min(specular, sat), 0.0);
+    // The material is applied once to each saturated light sum, as on the CPU.
+    t.diffuse = vec4<f32>(min(min(diffuse, sat) * m.diffuse, sat), 0.0);
+    t.specular = vec4<f32>(min(min(specular, sat) * m.specular, sat), 0.0);
     t.emission = vec4<f32>(m.emission, 0.0);
     return t;
 }

@@ -375,8 +375,8 @@ fn zero_and_tiny_vectors_in_the_geometry() {
         -Vec3::Z,
         "face_forward, Nref = 0"
     );
-    // Tiny vectors: Nref·V = 1e-40 is a positive subnormal, so N is kept. (At 1e-30 · 1e-30 the
-    // product underflows to 0 and ties to −N although both vectors agree: see the report.)
+    // Tiny vectors: the sign of Nref·V is decided exactly, so agreeing vectors keep N however
+    // small their product.
     assert_eq!(
         phong::face_forward(Vec3::Z, Vec3::Z * 1e-20, Vec3::Z * 1e-20),
         Vec3::Z,

@@ -152,7 +152,7 @@ pub fn candidates() -> [Candidate; 4] {
             run: kahan,
         },
         Candidate {
-            name: "`phong::triangle_normal` (f64 inside)",
+            name: "`phong::triangle_normal` (exact area vector)",
             run: phong::triangle_normal,
         },
     ]
