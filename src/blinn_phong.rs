@@ -19,7 +19,7 @@ use crate::pow::PowStrategy;
 /// number. With `N`, `L`, `V` coplanar the angle between `N` and `H` is half the angle between `R`
 /// and `V`, so Blinn-Phong with about `4s` tracks Phong with `s` near the highlight (the notes'
 /// "2–4×" rule; derivation and measured error in
-/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-4-exponent-rule)).
+/// docs/derivations.md, section "The 4× exponent rule").
 ///
 /// **Domain:** the cosines of unit `N`, `L`, `V` (see [`Incidence`]); `s ≥ 0`.
 ///

@@ -15,7 +15,7 @@ use crate::math;
 ///           = 1.055·x^(1/2.4) − 0.055  for x > 0.0031308
 /// ```
 ///
-/// Derivation and constants: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#srgb).
+/// Derivation and constants: docs/derivations.md, section "sRGB".
 ///
 /// **Domain:** any finite `x`; `[0, 1]` maps onto `[0, 1]`. Values above 1 follow the same curve
 /// (useful before tone mapping), negatives the linear segment, saturated at `−f32::MAX`.

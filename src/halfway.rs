@@ -15,7 +15,7 @@ use crate::normalize_or_zero;
 /// half the angle between `R` and `V` (see docs/derivations.md).
 ///
 /// Derivation of the bisection and half-angle properties:
-/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-halfway-vector).
+/// docs/derivations.md, section "The halfway vector".
 ///
 /// **Degenerate input:** when `L = −V` the sum is zero and every direction perpendicular to `L`
 /// bisects them equally; there is no single answer, so this returns `None`. It also returns `None`

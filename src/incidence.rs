@@ -18,7 +18,7 @@ use glam::Vec3;
 /// full relative precision. So [`new`](Self::new) computes `n_dot_h_sq` from the vectors (still
 /// without a square root), and [`from_cosines`](Self::from_cosines) uses the cosine form for
 /// callers who only have cosines. Measured errors of both are in docs/accuracy.md; derivations in
-/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#dot-product-forms-of-the-lobes).
+/// docs/derivations.md, section "Dot-product forms of the lobes".
 ///
 /// **Domain:** every direction points away from the surface (to the light, to the viewer) and is
 /// unit, or the zero vector meaning "no such direction". The fields are public so batch code and

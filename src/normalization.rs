@@ -21,7 +21,7 @@ use crate::math;
 /// of the normalised specular, a normalised model gates specular by the cosine whatever its
 /// [`SpecularGate`](crate::SpecularGate) says. For Phong, `Energy` and `EnergyExact` are the same
 /// factor: `(s+2)/(2π)` already makes the cosine-weighted lobe integrate to 1 at normal incidence.
-/// Derivations: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#energy-normalisation).
+/// Derivations: docs/derivations.md, section "Energy normalisation".
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Normalization {

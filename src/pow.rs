@@ -11,7 +11,7 @@
 //! positive and 0 where it is zero. This keeps the lobe continuous in the shininess (a material at
 //! `s = 10⁻⁶` and one at `s = 0` look the same) and agrees with what Mesa computes at run time for
 //! `pow(0, 0)`. IEEE `powf(0, 0) = 1` would instead light the whole back half of a Phong lobe at
-//! `s = 0`. Derivation: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-00-rule).
+//! `s = 0`. Derivation: docs/derivations.md, section "The 0^0 rule".
 //!
 //! ## Strategies and their error bounds
 //!

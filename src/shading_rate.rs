@@ -28,7 +28,7 @@
 //! the computed shadings (see [`gouraud_error_bound`]). A directional light's diffuse part has an exact form,
 //! `(Σ bᵢcᵢ)(1 − 1/‖Σ bᵢnᵢ‖)` plus a Jensen gap at the terminator, and gets the sharper bound
 //! `max(B(1/μ − 1), AB/(A+B))` from it. The derivation with every constant is in
-//! [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#shading-rate-bound) (section "Shading-rate bound").
+//! docs/derivations.md, section "Shading-rate bound".
 
 use glam::Vec3;
 
@@ -929,7 +929,7 @@ fn finish(f: Jet, r2: f32, s: f32) -> f32 {
 /// diffuse part, `B` and `A` are the largest positive and negative vertex values of `N·L` and
 /// `μ = min ‖Σ bᵢnᵢ‖`. The parts (the light's ambient, diffuse and specular) and the lights add
 /// their bounds; the scene's ambient and the emission are constant and add nothing. Derivation in
-/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#shading-rate-bound) (section "Shading-rate bound").
+/// docs/derivations.md, section "Shading-rate bound".
 ///
 /// **Domain:** `positions` finite; `normals` the vertex normals the renderer interpolates (they
 /// are normalised here, and per-pixel shading is assumed to interpolate these unit normals with
