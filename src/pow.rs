@@ -9,9 +9,10 @@
 //!
 //! **`0^0`.** At `s = 0` this takes the limit `s → 0⁺` pointwise: 1 where the clamped cosine is
 //! positive and 0 where it is zero. This keeps the lobe continuous in the shininess (a material at
-//! `s = 10⁻⁶` and one at `s = 0` look the same) and agrees with what Mesa computes at run time for
-//! `pow(0, 0)`. IEEE `powf(0, 0) = 1` would instead light the whole back half of a Phong lobe at
-//! `s = 0`. Derivation: docs/derivations.md, section "The 0^0 rule".
+//! `s = 10⁻⁶` and one at `s = 0` look the same) and agrees with what Mesa's GLSL `pow(0, 0)`
+//! computes at run time. It is a choice, not a universal convention: IEEE `powf(0, 0) = 1`, and
+//! Mesa's fixed-function lighting (OpenGL 2.1's `GL_SHININESS` path) also gives 1 there, which
+//! lights the whole back half of a Phong lobe at `s = 0`. Derivation: docs/derivations.md, section "The 0^0 rule".
 //!
 //! ## Strategies and their error bounds
 //!
