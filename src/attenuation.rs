@@ -45,7 +45,9 @@ pub enum Attenuation {
     },
     /// `P / max(d², ε²)`: the inverse-square law scaled by a light power.
     InverseSquare {
-        /// `P`, a multiplier (not an exponent), as in the Blinn-Phong shader on Wikipedia.
+        /// `P`, a multiplier (not an exponent). To reproduce the Blinn-Phong shader on Wikipedia,
+        /// leave this at 1 and give its light power to
+        /// [`LightColors::try_from_power`](crate::LightColors::try_from_power), so it is applied once.
         power: f32,
         /// `ε`, the distance below which the factor stops growing (default 0.01, one centimetre in
         /// metres, as Frostbite uses).
@@ -149,6 +151,25 @@ impl Attenuation {
         })
     }
 
+    /// `P / max(d², ε²)` with a chosen `ε`, checked: `P` finite and `≥ 0`, `ε` finite and `> 0`.
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// let a = Attenuation::try_inverse_square_with_min_distance(1.0, 0.5)?;
+    /// assert_eq!(a.factor(0.0), 4.0); // 1 / 0.5²: the factor stops growing inside ε
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    pub fn try_inverse_square_with_min_distance(
+        power: f32,
+        min_distance: f32,
+    ) -> Result<Self, PhongError> {
+        Attenuation::InverseSquare {
+            power,
+            min_distance,
+        }
+        .validated()
+    }
+
     /// The Unreal windowed form with radius `r`, checked: `r` finite and `> 0`.
     pub fn try_unreal(radius: f32) -> Result<Self, PhongError> {
         Ok(Attenuation::Unreal {
@@ -162,6 +183,18 @@ impl Attenuation {
             radius: positive("attenuation.radius", radius)?,
             min_distance: Self::DEFAULT_MIN_DISTANCE,
         })
+    }
+
+    /// The Frostbite windowed form with radius `r` and a chosen `ε`, checked: both finite and `> 0`.
+    pub fn try_frostbite_with_min_distance(
+        radius: f32,
+        min_distance: f32,
+    ) -> Result<Self, PhongError> {
+        Attenuation::Frostbite {
+            radius,
+            min_distance,
+        }
+        .validated()
     }
 
     /// Checks the fields of any variant, as the `try_*` constructors do; returns `self` if valid.

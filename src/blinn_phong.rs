@@ -17,8 +17,8 @@ use crate::pow::PowStrategy;
 ///
 /// The squared form needs one divide and no square root, and raising `(N·H)²` to `s/2` is the same
 /// number. With `N`, `L`, `V` coplanar the angle between `N` and `H` is half the angle between `R`
-/// and `V`, so Blinn-Phong with about `4s` tracks Phong with `s` near the highlight (the notes'
-/// "2–4×" rule; derivation and measured error in
+/// and `V`, so Blinn-Phong with about `4s` tracks Phong with `s` near the highlight (the "2–4×"
+/// rule of LearnOpenGL's Advanced Lighting chapter; derivation and measured error in
 /// docs/derivations.md, section "The 4× exponent rule").
 ///
 /// **Domain:** the cosines of unit `N`, `L`, `V` (see [`Incidence`]); `s ≥ 0`.
@@ -45,6 +45,24 @@ pub struct BlinnPhong {
     pub normalization: Normalization,
     /// How `((N·H)²)^(s/2)` is evaluated.
     pub pow: PowStrategy,
+}
+
+impl BlinnPhong {
+    /// Configured like LearnOpenGL's Advanced Lighting shader: no gate (the highlight is not cut
+    /// where `N·L ≤ 0`), classic lobes, the default pow strategy. The counterpart of
+    /// [`Phong::learnopengl`](crate::Phong::learnopengl).
+    ///
+    /// ```
+    /// use phong::{BlinnPhong, SpecularGate};
+    /// assert_eq!(BlinnPhong::learnopengl().gate, SpecularGate::None);
+    /// ```
+    #[must_use]
+    pub fn learnopengl() -> Self {
+        BlinnPhong {
+            gate: SpecularGate::None,
+            ..BlinnPhong::default()
+        }
+    }
 }
 
 impl ReflectionModel for BlinnPhong {

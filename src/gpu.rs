@@ -145,6 +145,12 @@ impl From<&Light> for GpuLight {
                 g.position = p.position().to_array();
                 p.attenuation()
             }
+            // OpenGL's 180° cutoff is no cone: the shaders' point-light path is exactly that.
+            Light::Spot(s) if s.cone().is_none() => {
+                g.kind = 1;
+                g.position = s.position().to_array();
+                s.attenuation()
+            }
             Light::Spot(s) => {
                 g.kind = 2;
                 g.position = s.position().to_array();

@@ -135,7 +135,7 @@ pub use incidence::Incidence;
 pub use lambert::Lambert;
 pub use light::{
     DirectionalLight, Light, LightColors, LightColorsParams, LightSample, LightSource, PointLight,
-    SpotLight,
+    SpotCone, SpotLight,
 };
 pub use material::{Material, MaterialParams};
 pub use model::{Model, ReflectionModel};

@@ -130,7 +130,26 @@ impl LightColors {
     /// La = 0,   Ld = Ls = P · C
     /// ```
     ///
+    /// **This is where that shader's power goes.** Its falloff `P·C / d²` is this light with
+    /// [`Attenuation::try_inverse_square(1.0)`](Attenuation::try_inverse_square): the power is
+    /// applied once, here, and the attenuation's own `power` stays 1. Putting `P` in both applies
+    /// it twice.
+    ///
     /// Checked: `C` and `P` finite and `≥ 0`.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{Attenuation, LightColors, LightSource, PointLight};
+    /// // Wikipedia's Blinn-Phong shader: lightColor = white, lightPower = 40.
+    /// let lamp = PointLight::try_new(
+    ///     Vec3::new(0.0, 2.0, 0.0),
+    ///     Attenuation::try_inverse_square(1.0)?,
+    ///     LightColors::try_from_power(Vec3::ONE, 40.0)?,
+    /// )?;
+    /// let s = lamp.sample(Vec3::ZERO);
+    /// assert_eq!(lamp.colors().diffuse() * s.factor, Vec3::splat(40.0 / 4.0)); // P·C / d²
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
     pub fn try_from_power(color: Vec3, power: f32) -> Result<Self, PhongError> {
         error::colour(["light.color.x", "light.color.y", "light.color.z"], color)?;
         error::non_negative("light.power", power)?;
@@ -354,17 +373,86 @@ impl LightSource for PointLight {
     }
 }
 
+/// A spot light's cone: its half-angle and the exponent that concentrates light toward its axis.
+///
+/// ```text
+/// spot(c) = c^e   if c ≥ cos(cutoff)        c = −L·D, the cosine between the axis and the point
+///         = 0     otherwise
+/// spot(c) = 1     for every c when cutoff = π (OpenGL's `GL_SPOT_CUTOFF = 180`: not a spot)
+/// ```
+///
+/// Named fields, so the two angles-and-numbers a spot takes cannot be swapped silently:
+/// `SpotCone { cutoff: 0.5, exponent: 8.0 }`, or [`SpotCone::degrees`] with
+/// [`with_exponent`](Self::with_exponent).
+///
+/// **Domain:** `cutoff` in radians, in `[0, π/2]` or exactly `π` ([`SpotCone::NONE`]); `exponent`
+/// finite and `≥ 0` (`GL_SPOT_EXPONENT`). [`SpotLight::try_with_cone`] checks both.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotCone {
+    /// The cone's half-angle in radians (`GL_SPOT_CUTOFF`, which OpenGL gives in degrees).
+    pub cutoff: f32,
+    /// The spot exponent `e` (`GL_SPOT_EXPONENT`); 0 lights the whole cone evenly.
+    pub exponent: f32,
+}
+
+impl SpotCone {
+    /// No cone: `cutoff = π`, OpenGL's `GL_SPOT_CUTOFF = 180`, the spot factor is 1 in every
+    /// direction and the light acts as a point light.
+    pub const NONE: SpotCone = SpotCone {
+        cutoff: core::f32::consts::PI,
+        exponent: 0.0,
+    };
+
+    /// A cone of half-angle `cutoff_degrees`, exponent 0, as OpenGL's `glLightf(GL_SPOT_CUTOFF, …)`
+    /// takes it. `180` gives [`SpotCone::NONE`] exactly (the `f32` conversion of 180° would round to
+    /// a value just off `π`).
+    ///
+    /// ```
+    /// use phong::SpotCone;
+    /// assert_eq!(SpotCone::degrees(180.0), SpotCone::NONE);
+    /// assert_eq!(SpotCone::degrees(90.0).cutoff, core::f32::consts::FRAC_PI_2);
+    /// let cone = SpotCone::degrees(30.0).with_exponent(8.0);
+    /// assert_eq!(cone.exponent, 8.0);
+    /// ```
+    #[must_use]
+    pub fn degrees(cutoff_degrees: f32) -> Self {
+        let cutoff = match cutoff_degrees {
+            180.0 => core::f32::consts::PI,
+            90.0 => core::f32::consts::FRAC_PI_2,
+            d => d.to_radians(),
+        };
+        SpotCone {
+            cutoff,
+            exponent: 0.0,
+        }
+    }
+
+    /// The same cone with spot exponent `e`.
+    #[must_use]
+    pub fn with_exponent(self, exponent: f32) -> Self {
+        SpotCone { exponent, ..self }
+    }
+
+    /// Whether this is OpenGL's "not a spot" (`cutoff = π`).
+    #[must_use]
+    #[inline]
+    pub fn is_none(&self) -> bool {
+        self.cutoff == core::f32::consts::PI
+    }
+}
+
 /// A point light restricted to a cone: OpenGL's fixed-function spot light.
 ///
 /// ```text
 /// spot = (−L·D)^e   if −L·D ≥ cos(cutoff)
 ///      = 0          otherwise
+/// spot = 1          if cutoff = π (OpenGL's 180°: not a spot)
 /// ```
 ///
 /// `D` is the unit axis the spot shines along (from the light outward), `L` the direction from the
 /// surface to the light, `e` the exponent (`GL_SPOT_EXPONENT`) and `cutoff` the half-angle of the cone
-/// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]`). Derivation:
-/// [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#the-spot-factor).
+/// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]` or exactly `π`); see [`SpotCone`]. Derivation:
+/// docs/derivations.md, section "The spot factor".
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(
     feature = "serde",
@@ -384,8 +472,11 @@ pub struct SpotLight {
 }
 
 impl SpotLight {
-    /// Checked: finite position, non-zero axis, `cutoff ∈ [0, π/2]` radians, exponent finite `≥ 0`,
-    /// valid attenuation.
+    /// Checked, with the cone's two numbers positional: `cutoff` (radians) then `exponent`. Prefer
+    /// [`try_with_cone`](Self::try_with_cone), whose named [`SpotCone`] cannot be misordered.
+    ///
+    /// Checks: finite position, non-zero axis, `cutoff ∈ [0, π/2]` radians or exactly `π` (not a
+    /// spot), exponent finite `≥ 0`, valid attenuation.
     ///
     /// ```
     /// use glam::Vec3;
@@ -408,8 +499,44 @@ impl SpotLight {
         attenuation: Attenuation,
         colors: LightColors,
     ) -> Result<Self, PhongError> {
+        Self::try_with_cone(
+            position,
+            axis,
+            SpotCone { cutoff, exponent },
+            attenuation,
+            colors,
+        )
+    }
+
+    /// Checked, with a named cone: finite position, non-zero axis (normalised here), `cone.cutoff`
+    /// in `[0, π/2]` radians or exactly `π` ([`SpotCone::NONE`]), `cone.exponent` finite and `≥ 0`,
+    /// valid attenuation. Errors name the field (`light.cutoff`, `light.exponent`, …).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{Attenuation, LightColors, LightSource, SpotCone, SpotLight};
+    /// let lamp = SpotLight::try_with_cone(
+    ///     Vec3::new(0.0, 5.0, 0.0), -Vec3::Y, SpotCone::degrees(30.0).with_exponent(4.0),
+    ///     Attenuation::None, LightColors::BLACK,
+    /// )?;
+    /// assert_eq!(lamp.sample(Vec3::ZERO).factor, 1.0);
+    /// // OpenGL's 180°: no cone, the light reaches behind itself too.
+    /// let bulb = SpotLight::try_with_cone(
+    ///     Vec3::ZERO, Vec3::X, SpotCone::degrees(180.0), Attenuation::None, LightColors::BLACK,
+    /// )?;
+    /// assert_eq!(bulb.sample(Vec3::new(-3.0, 0.0, 0.0)).factor, 1.0);
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    pub fn try_with_cone(
+        position: Vec3,
+        axis: Vec3,
+        cone: SpotCone,
+        attenuation: Attenuation,
+        colors: LightColors,
+    ) -> Result<Self, PhongError> {
         finite_point("light.position", position)?;
         let axis = error::direction("light.axis", axis)?;
+        let SpotCone { cutoff, exponent } = cone;
         let half_pi = core::f32::consts::FRAC_PI_2;
         if !cutoff.is_finite() {
             return Err(PhongError::NonFinite {
@@ -417,7 +544,7 @@ impl SpotLight {
                 value: cutoff,
             });
         }
-        if !(0.0..=half_pi).contains(&cutoff) {
+        if !(0.0..=half_pi).contains(&cutoff) && !cone.is_none() {
             return Err(PhongError::OutOfRange {
                 field: "light.cutoff",
                 value: cutoff,
@@ -429,12 +556,71 @@ impl SpotLight {
             position,
             axis,
             cutoff,
-            // cos(π/2) rounds to -4.4e-8 in f32; the cone must not reach behind the light.
-            cos_cutoff: math::cos(cutoff).max(0.0),
+            cos_cutoff: cos_cutoff(cutoff),
             exponent: error::non_negative("light.exponent", exponent)?,
             attenuation: attenuation.validated()?,
             colors,
         })
+    }
+
+    /// Unchecked: debug builds assert what [`try_with_cone`](Self::try_with_cone) checks. Release
+    /// builds sanitise: a NaN cutoff reads as 0 and any other is clamped to `[0, π/2]` unless it is
+    /// `≥ π` (then no cone); a NaN or negative exponent reads as 0 and `+∞` saturates at
+    /// `f32::MAX`; a zero or non-finite axis gives a light that reaches no point (spot factor 0);
+    /// the position and attenuation are kept as given, as [`PointLight::new`] does (shading is
+    /// total for any of them).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{Attenuation, LightColors, LightSource, SpotCone, SpotLight};
+    /// let spot = SpotLight::new(Vec3::Y, -Vec3::Y, SpotCone { cutoff: 0.3, exponent: 1.0 },
+    ///     Attenuation::None, LightColors::BLACK);
+    /// assert_eq!(spot.sample(Vec3::ZERO).factor, 1.0);
+    /// ```
+    #[must_use]
+    pub fn new(
+        position: Vec3,
+        axis: Vec3,
+        cone: SpotCone,
+        attenuation: Attenuation,
+        colors: LightColors,
+    ) -> Self {
+        debug_assert!(
+            Self::try_with_cone(position, axis, cone, attenuation, colors).is_ok(),
+            "SpotLight::new: {:?}",
+            Self::try_with_cone(position, axis, cone, attenuation, colors)
+        );
+        let pi = core::f32::consts::PI;
+        let cutoff = if cone.cutoff >= pi {
+            pi
+        } else {
+            math::clamp_or_lo(cone.cutoff, 0.0, core::f32::consts::FRAC_PI_2)
+        };
+        let axis = crate::normalize_or_zero(axis);
+        SpotLight {
+            position,
+            axis,
+            cutoff,
+            // A zero axis has no cone: `−L·D = 0` must never pass, so the threshold is above 1.
+            cos_cutoff: if axis == Vec3::ZERO {
+                2.0
+            } else {
+                cos_cutoff(cutoff)
+            },
+            exponent: math::clamp_or_lo(cone.exponent, 0.0, math::MAX),
+            attenuation,
+            colors,
+        }
+    }
+
+    /// The cone: cutoff (radians) and exponent.
+    #[must_use]
+    #[inline]
+    pub fn cone(&self) -> SpotCone {
+        SpotCone {
+            cutoff: self.cutoff,
+            exponent: self.exponent,
+        }
     }
 
     /// The light's position.
@@ -449,13 +635,14 @@ impl SpotLight {
     pub fn axis(&self) -> Vec3 {
         self.axis
     }
-    /// The cone's half-angle in radians, in `[0, π/2]`.
+    /// The cone's half-angle in radians, in `[0, π/2]`, or `π` for no cone.
     #[must_use]
     #[inline]
     pub fn cutoff(&self) -> f32 {
         self.cutoff
     }
-    /// `cos(cutoff)`.
+    /// `cos(cutoff)`, clamped to `≥ 0` for a cone (`cos(π/2)` rounds below 0 in `f32`); `−1` for no
+    /// cone.
     #[must_use]
     #[inline]
     pub fn cos_cutoff(&self) -> f32 {
@@ -474,13 +661,16 @@ impl SpotLight {
         self.attenuation
     }
 
-    /// The cone factor for unit `L` (from surface to light), in `[0, 1]`; 0 for a zero `L`.
+    /// The cone factor for unit `L` (from surface to light), in `[0, 1]`; 0 for a zero `L`; 1 for
+    /// every non-zero `L` when there is no cone (`cutoff = π`).
     #[must_use]
     #[inline]
     pub fn spot_factor(&self, l: Vec3) -> f32 {
         let c = -l.dot(self.axis);
         if l == Vec3::ZERO || c < self.cos_cutoff {
             0.0
+        } else if self.cos_cutoff < 0.0 {
+            1.0
         } else {
             lobe_pow(c.min(1.0), self.exponent)
         }
@@ -550,6 +740,16 @@ impl LightSource for Light {
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
         }
+    }
+}
+
+/// `cos(cutoff)` for a cone, kept `≥ 0` (`cos(π/2)` rounds to `−4.4e-8` in `f32`, and the cone must
+/// not reach behind the light); `−1` for no cone (`cutoff = π`), which every cosine passes.
+fn cos_cutoff(cutoff: f32) -> f32 {
+    if cutoff == core::f32::consts::PI {
+        -1.0
+    } else {
+        math::cos(cutoff).max(0.0)
     }
 }
 

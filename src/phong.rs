@@ -43,7 +43,9 @@ pub struct Phong {
 }
 
 impl Phong {
-    /// Configured like LearnOpenGL's basic-lighting shader: no gate, classic lobes, exact `pow`.
+    /// Configured like LearnOpenGL's basic-lighting shader: no gate (the highlight is not cut where
+    /// `N·L ≤ 0`), classic lobes, the default pow strategy. See also
+    /// [`BlinnPhong::learnopengl`](crate::BlinnPhong::learnopengl).
     #[must_use]
     pub fn learnopengl() -> Self {
         Phong {

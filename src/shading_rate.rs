@@ -704,7 +704,10 @@ fn light_bound(
                 eta,
             );
             let e = sl.exponent();
-            let spot = if q.hi < sl.cos_cutoff() {
+            let spot = if sl.cone().is_none() {
+                // OpenGL's 180° cutoff: the factor is 1 in every direction.
+                Jet::constant(1.0)
+            } else if q.hi < sl.cos_cutoff() {
                 Jet::ZERO
             } else if q.lo >= sl.cos_cutoff() && q.lo > 0.0 {
                 // The spot factor's power is `powf` (PowStrategy::Exact).
