@@ -4,7 +4,7 @@
 use glam::Vec3;
 use phong::{
     Attenuation, BlinnPhong, DirectionalLight, Light, LightColors, Material, Model, Normalization,
-    Phong, PointLight, PowStrategy, SpecularGate, SpotLight, Viewer,
+    Phong, PointLight, PowStrategy, SpecularGate, SpotLight, Terms, Viewer,
 };
 
 fn round_trip<T>(value: &T) -> T
@@ -82,6 +82,13 @@ fn every_parameter_type_round_trips() {
         round_trip(&model);
     }
     round_trip(&Viewer::At(Vec3::new(0.0, 1.0, 5.0)));
+    round_trip(&Viewer::Infinite(Vec3::new(0.0, 3.0, 4.0)));
+    round_trip(&Terms {
+        ambient: Vec3::new(0.0, 1e-40, f32::MAX),
+        diffuse: Vec3::splat(0.5),
+        specular: Vec3::new(2.0, 0.0, 0.25),
+        emission: Vec3::ZERO,
+    });
 }
 
 #[test]
@@ -144,4 +151,78 @@ fn invalid_files_are_rejected_naming_the_field() {
              "colors": { "ambient": [0,0,0], "diffuse": [1,1,1], "specular": [1,1,1] } }"#,
     );
     assert!(e.contains("light.cutoff must lie in"), "{e}");
+}
+
+/// Fuzz reproducer: `1e39` does not fit an `f32`, serde_json reads it as `+∞`, and a plainly derived
+/// `Viewer` used to keep that. The check names the coordinate.
+#[test]
+fn a_viewer_at_infinity_is_rejected() {
+    let e = rejection::<Viewer>(r#"{"At":[1e39,0,0]}"#);
+    assert!(
+        e.contains("viewer.position.x must be finite, got inf"),
+        "{e}"
+    );
+    let e = rejection::<Viewer>(r#"{"At":[0,0,-1e39]}"#);
+    assert!(
+        e.contains("viewer.position.z must be finite, got -inf"),
+        "{e}"
+    );
+    let e = rejection::<Viewer>(r#"{"Infinite":[0,1e39,1]}"#);
+    assert!(
+        e.contains("viewer.direction.y must be finite, got inf"),
+        "{e}"
+    );
+
+    // The largest f32, subnormals and any length of direction are in the domain, kept as written.
+    let v: Viewer = serde_json::from_str(r#"{"At":[3.4028235e38,-1e-40,0]}"#).unwrap();
+    assert_eq!(v, Viewer::At(Vec3::new(f32::MAX, -1e-40, 0.0)));
+    let v: Viewer = serde_json::from_str(r#"{"Infinite":[0,0,-7]}"#).unwrap();
+    assert_eq!(
+        v,
+        Viewer::Infinite(Vec3::new(0.0, 0.0, -7.0)),
+        "not normalised"
+    );
+    // A zero direction is the documented "no viewer direction", not an error.
+    let v: Viewer = serde_json::from_str(r#"{"Infinite":[0,0,0]}"#).unwrap();
+    assert_eq!(v, Viewer::Infinite(Vec3::ZERO));
+}
+
+fn terms_json(ambient: &str, diffuse: &str, specular: &str, emission: &str) -> String {
+    format!(
+        r#"{{"ambient":{ambient},"diffuse":{diffuse},"specular":{specular},"emission":{emission}}}"#
+    )
+}
+
+/// Fuzz reproducer: `Terms` used to load with non-finite and negative channels, outside the range
+/// `shade` produces (finite, `≥ 0`), which is the rule documented on the type.
+#[test]
+fn terms_outside_the_range_shade_produces_are_rejected() {
+    let ok = "[0,0.5,1]";
+    let e = rejection::<Terms>(&terms_json(ok, "[1,-1,0]", ok, ok));
+    assert!(
+        e.contains("terms.diffuse.y must be non-negative, got -1"),
+        "{e}"
+    );
+    let e = rejection::<Terms>(&terms_json(ok, ok, ok, "[0,0,1e39]"));
+    assert!(
+        e.contains("terms.emission.z must be finite, got inf"),
+        "{e}"
+    );
+    let e = rejection::<Terms>(&terms_json("[-1e39,0,0]", ok, ok, ok));
+    assert!(
+        e.contains("terms.ambient.x must be finite, got -inf"),
+        "{e}"
+    );
+    let e = rejection::<Terms>(&terms_json(ok, ok, "[0,-1e-40,0]", ok));
+    assert!(e.contains("terms.specular.y must be non-negative"), "{e}");
+
+    // Zero (either sign), subnormal and the largest f32 are all in range.
+    let t: Terms =
+        serde_json::from_str(&terms_json("[0,-0,1e-40]", ok, "[3.4028235e38,2,3]", ok)).unwrap();
+    assert_eq!(t.ambient, Vec3::new(0.0, 0.0, 1e-40));
+    assert_eq!(t.specular.x, f32::MAX);
+    assert!(
+        t.ambient.y == 0.0 && t.ambient.y.is_sign_negative(),
+        "-0 kept"
+    );
 }
