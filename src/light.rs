@@ -24,7 +24,7 @@ use crate::pow::lobe_pow;
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct LightColors {
     ambient: Vec3,
@@ -216,7 +216,7 @@ pub trait LightSource {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct DirectionalLight {
     direction: Vec3,
@@ -286,7 +286,7 @@ impl LightSource for DirectionalLight {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct PointLight {
     position: Vec3,
@@ -369,7 +369,7 @@ impl LightSource for PointLight {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct SpotLight {
     position: Vec3,

@@ -10,7 +10,9 @@
 //! `f32` (`1e39`) as `±∞` rather than failing, so it is this check that rejects it, with the field
 //! named (`light.diffuse.x must be finite, got inf`).
 //!
-//! What each `Deserialize` type checks:
+//! Every struct-like type (and every struct variant) also denies unknown fields, so a misspelt key
+//! (`"shinyness"`) is an error naming it instead of a silently defaulted value. What each
+//! `Deserialize` type checks:
 //!
 //! | type | checked on load |
 //! |---|---|
@@ -24,6 +26,9 @@
 //! | `Lambert`, `Phong`, `BlinnPhong` | nothing more: their fields are the enums below, every variant valid |
 //! | `Model` | nothing more: each newtype variant is a model above |
 //! | `SpecularGate`, `Normalization`, `PowStrategy` | nothing: unit variants only, every one valid; an unknown name is serde's error |
+//!
+//! `Light`, `Model` and `Viewer` have only newtype variants, so there is no field to deny; an unknown
+//! variant name, or a second key beside the variant's, is already an error from serde.
 
 use glam::Vec3;
 

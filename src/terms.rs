@@ -29,7 +29,7 @@ use crate::math;
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct Terms {
     /// `Ka ⊙ (Ia + Σ La·f)`

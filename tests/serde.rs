@@ -226,3 +226,119 @@ fn terms_outside_the_range_shade_produces_are_rejected() {
         "-0 kept"
     );
 }
+
+/// The message of an unknown key names it: serde's "unknown field `key`".
+fn assert_unknown_field<T: serde::de::DeserializeOwned + core::fmt::Debug>(json: &str, key: &str) {
+    let e = rejection::<T>(json);
+    assert!(
+        e.contains(&format!("unknown field `{key}`")),
+        "{} with `{key}`: {e}",
+        core::any::type_name::<T>()
+    );
+}
+
+const COLORS: &str = r#"{"ambient":[0,0,0],"diffuse":[1,1,1],"specular":[1,1,1]}"#;
+
+/// Fuzz reproducer: a misspelt key used to be ignored, so `"shinyness": -5` loaded a material with
+/// no complaint (and, had `shininess` a default, with that default).
+#[test]
+fn a_misspelt_material_key_is_rejected() {
+    assert_unknown_field::<Material>(
+        r#"{ "ambient": [0,0,0], "diffuse": [1,1,1], "specular": [1,1,1],
+             "emission": [0,0,0], "shininess": 8, "shinyness": -5 }"#,
+        "shinyness",
+    );
+}
+
+#[test]
+fn every_struct_like_type_rejects_an_unknown_field() {
+    assert_unknown_field::<LightColors>(
+        r#"{"ambient":[0,0,0],"diffuse":[1,1,1],"specular":[1,1,1],"emissive":[0,0,0]}"#,
+        "emissive",
+    );
+    // Each struct variant of Attenuation.
+    assert_unknown_field::<Attenuation>(
+        r#"{"Polynomial":{"constant":1,"linear":0,"quadratic":0.1,"cubic":0}}"#,
+        "cubic",
+    );
+    assert_unknown_field::<Attenuation>(
+        r#"{"InverseSquare":{"power":10,"min_distance":0.01,"radius":5}}"#,
+        "radius",
+    );
+    assert_unknown_field::<Attenuation>(r#"{"Unreal":{"radius":5,"raduis":6}}"#, "raduis");
+    assert_unknown_field::<Attenuation>(
+        r#"{"Frostbite":{"radius":5,"min_distance":0.01,"max_distance":9}}"#,
+        "max_distance",
+    );
+    assert_unknown_field::<DirectionalLight>(
+        &format!(r#"{{"direction":[0,1,0],"colors":{COLORS},"intensity":2}}"#),
+        "intensity",
+    );
+    assert_unknown_field::<PointLight>(
+        &format!(r#"{{"position":[0,1,0],"attenuation":"None","colors":{COLORS},"range":10}}"#),
+        "range",
+    );
+    // A spot's cos(cutoff) is derived, never read: a file carrying one (perhaps disagreeing with
+    // the cutoff) is rejected rather than silently recomputed.
+    assert_unknown_field::<SpotLight>(
+        &format!(
+            r#"{{"position":[0,4,0],"axis":[0,-1,0],"cutoff":0.4,"cos_cutoff":0.5,"exponent":8,
+                 "attenuation":"None","colors":{COLORS}}}"#
+        ),
+        "cos_cutoff",
+    );
+    // Inside the enum the inner type's own check runs.
+    assert_unknown_field::<Light>(
+        &format!(r#"{{"Directional":{{"direction":[0,1,0],"colors":{COLORS},"dir":[1,0,0]}}}}"#),
+        "dir",
+    );
+    // Unknown keys in a nested LightColors are caught too.
+    assert_unknown_field::<PointLight>(
+        r#"{"position":[0,1,0],"attenuation":"None",
+            "colors":{"ambient":[0,0,0],"diffuse":[1,1,1],"specular":[1,1,1],"diffuse_":[0,0,0]}}"#,
+        "diffuse_",
+    );
+    assert_unknown_field::<Terms>(
+        r#"{"ambient":[0,0,0],"diffuse":[0,0,0],"specular":[0,0,0],"emission":[0,0,0],"total":[0,0,0]}"#,
+        "total",
+    );
+    assert_unknown_field::<phong::Lambert>(r#"{"normalization":"Energy","gate":"Step"}"#, "gate");
+    assert_unknown_field::<Phong>(
+        r#"{"gate":"Step","normalization":"None","pow":"Exact","shininess":32}"#,
+        "shininess",
+    );
+    assert_unknown_field::<BlinnPhong>(
+        r#"{"gate":"Step","normalisation":"None","pow":"Exact"}"#,
+        "normalisation",
+    );
+    assert_unknown_field::<Model>(
+        r#"{"BlinnPhong":{"gate":"Cosine","normalization":"None","pow":"Exact","exact":true}}"#,
+        "exact",
+    );
+}
+
+/// The enums without struct variants have no field to deny: a wrong variant name is an error naming
+/// it, and so is a second key beside the variant's (serde_json expects the enum object to close).
+#[test]
+fn enums_reject_unknown_variants_and_extra_keys() {
+    fn unknown_variant<T: serde::de::DeserializeOwned + core::fmt::Debug>(json: &str, name: &str) {
+        let e = rejection::<T>(json);
+        assert!(e.contains(&format!("unknown variant `{name}`")), "{e}");
+    }
+    unknown_variant::<SpecularGate>(r#""Smooth""#, "Smooth");
+    unknown_variant::<Normalization>(r#""Energetic""#, "Energetic");
+    unknown_variant::<PowStrategy>(r#""Fast""#, "Fast");
+    unknown_variant::<Attenuation>(r#"{"Linear":{"k":1}}"#, "Linear");
+    unknown_variant::<Model>(r#"{"CookTorrance":{}}"#, "CookTorrance");
+    unknown_variant::<Light>(r#"{"Area":{}}"#, "Area");
+    unknown_variant::<Viewer>(r#"{"Orthographic":[0,0,1]}"#, "Orthographic");
+
+    rejection::<Viewer>(r#"{"At":[0,0,5],"Infinite":[0,0,1]}"#);
+    rejection::<Model>(r#"{"Lambert":{"normalization":"None"},"pow":"Exact"}"#);
+    rejection::<Light>(&format!(
+        r#"{{"Directional":{{"direction":[0,1,0],"colors":{COLORS}}},"note":1}}"#
+    ));
+    // A unit variant carries nothing.
+    rejection::<SpecularGate>(r#"{"Step":5}"#);
+    rejection::<Attenuation>(r#"{"None":{"radius":5}}"#);
+}
