@@ -28,7 +28,7 @@ use crate::math;
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub enum Attenuation {
     /// No falloff: the factor is 1 at every distance (the light never fades). The default.

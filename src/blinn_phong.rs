@@ -37,7 +37,11 @@ use crate::pow::PowStrategy;
 /// assert!((BlinnPhong::default().specular(&g, 128.0) - 1.0).abs() < 1e-5);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct BlinnPhong {
     /// How the specular lobe behaves when `N·L ≤ 0`.
     pub gate: SpecularGate,

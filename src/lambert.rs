@@ -18,7 +18,11 @@ use crate::normalization::Normalization;
 /// assert!(!Lambert::HAS_SPECULAR);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Lambert {
     /// [`Normalization::None`] (the default) or normalised (`1/π`).
     pub normalization: Normalization,

@@ -24,7 +24,7 @@ use crate::pow::lobe_pow;
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct LightColors {
     ambient: Vec3,
@@ -235,7 +235,7 @@ pub trait LightSource {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct DirectionalLight {
     direction: Vec3,
@@ -305,7 +305,7 @@ impl LightSource for DirectionalLight {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct PointLight {
     position: Vec3,
@@ -457,7 +457,7 @@ impl SpotCone {
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
+    serde(remote = "Self", deny_unknown_fields)
 )]
 pub struct SpotLight {
     position: Vec3,

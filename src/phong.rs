@@ -32,7 +32,11 @@ use crate::pow::PowStrategy;
 /// assert_eq!(Phong::default().specular(&g, 32.0), 1.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct Phong {
     /// How the specular lobe behaves when `N·L ≤ 0`.
     pub gate: SpecularGate,

@@ -9,8 +9,18 @@ use crate::shader::Shader;
 use crate::terms::Terms;
 
 /// Where the viewer is.
+///
+/// **Domain:** every coordinate finite. `At(eye)` may be any finite point (at the shaded point
+/// itself `V` is the zero vector: no specular there); `Infinite(d)` any finite `d` of any length (a
+/// zero `d` means no viewer direction and so no specular). Deserialising (feature `serde`) checks
+/// this and names the coordinate, e.g. `viewer.position.x must be finite, got inf`
+/// (`viewer.direction.*` for `Infinite`); a direction is kept as written, not normalised.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub enum Viewer {
     /// A viewer at this point (a camera position): `V = normalize(eye − p)` per point.
     At(Vec3),

@@ -8,10 +8,13 @@ use crate::math;
 
 /// The four terms of the Phong-family equation at one point, kept apart.
 ///
-/// Every channel of every term is finite and `≥ 0` when it comes from [`shade`](crate::shade) or a
-/// [`Shader`](crate::Shader). Terms add (`+`, `+=`) and scale (`* k`) channel by channel, so a
-/// renderer can shade one light at a time, or weight a bounce, and sum: both saturate at
-/// `f32::MAX`, so the results stay finite.
+/// **Domain:** every channel of every term finite and `≥ 0`: what [`shade`](crate::shade) and a
+/// [`Shader`](crate::Shader) produce. The fields are public, so other values can be built in code,
+/// but deserialising (feature `serde`) checks this rule and names the channel, e.g.
+/// `terms.diffuse.y must be non-negative, got -1`.
+///
+/// Terms add (`+`, `+=`) and scale (`* k`) channel by channel, so a renderer can shade one light at
+/// a time, or weight a bounce, and sum: both saturate at `f32::MAX`, so the results stay finite.
 ///
 /// ```
 /// use glam::Vec3;
@@ -23,7 +26,11 @@ use crate::math;
 /// assert_eq!(sum.total(), Vec3::ONE);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self", deny_unknown_fields)
+)]
 pub struct Terms {
     /// `Ka ⊙ (Ia + Σ La·f)`
     pub ambient: Vec3,
