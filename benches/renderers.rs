@@ -2,8 +2,9 @@
 //!
 //! - `raytrace`: a Whitted-style ray tracer shades one hit at a time: recorded hits (position,
 //!   normal, direction back along the ray) under three point lights, with each light's visibility
-//!   from a shadow ray. `phong` is `Shader::with_viewer(Viewer::along_ray(..)).shade_visible(..)`, as
-//!   in `examples/raytracer.rs`.
+//!   from a shadow ray. `phong` is `Shader::with_viewer(Viewer::Infinite(to_eye)).shade_visible(..)`:
+//!   `examples/raytracer.rs` makes the same call with `Viewer::along_ray(ray direction)`, which is
+//!   `Viewer::Infinite(−ray direction)`.
 //! - `fragment`: a rasterizer shades fragments with texture maps and a shadow map: a per-pixel
 //!   diffuse colour, specular strength, shininess (non-integer, uniform in [2, 128]) and shadow
 //!   factor, one point light, a camera at a point. `phong` is `Shader::shade_surface(..)`.
