@@ -65,7 +65,13 @@
 //!   [`max_relative_error`](crate::PowStrategy::max_relative_error) (relative to
 //!   `max(lobe, 2⁻²⁴)`);
 //! - each of the three sums, and the total, rounds to within `(8 + 2·lights)·2⁻²⁴` relative (all
-//!   their terms are `≥ 0`).
+//!   their terms are `≥ 0`);
+//! - where an intermediate value falls below `f32`'s normal range (`2⁻¹²⁶`), gradual underflow
+//!   replaces the relative rounding by an absolute error of at most `2⁻¹⁵⁰` per operation, which
+//!   the factors applied after it scale: per light, at most `32 · 2⁻¹⁵⁰ · max(f, 1)` times the sum
+//!   over the three terms of `max(colour, 1) · max(reflectance, 1)` (and the normalisation factor
+//!   for the specular term). With colours of order 1 this is below `1e-43`; it matters only for
+//!   scenes whose colours span the whole `f32` range. `shade` has the same allowance.
 //!
 //! So each channel lies in the range the equation takes over those perturbations. To first order
 //! that range is, per light, `f·Ks·Ls·k·gate` (`k` the normalisation factor) times the lobe's

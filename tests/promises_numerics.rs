@@ -333,3 +333,97 @@ proptest! {
         }
     }
 }
+
+/// Shades `p`/`n` at every level and checks each lane against the documented range.
+fn assert_batch_in_range<L: LightSource + phong::BatchLight>(
+    model: Model,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    p: Vec3,
+    n: Vec3,
+) {
+    let range = batch_range::range(&model, material, scene, p, n);
+    for level in Level::supported() {
+        let (mut r, mut g, mut b) = ([0.0f32], [0.0f32], [0.0f32]);
+        phong::shade_batch_with_level(
+            level,
+            &model,
+            material,
+            scene,
+            SoaVec3::new(&[p.x], &[p.y], &[p.z]),
+            SoaVec3::new(&[n.x], &[n.y], &[n.z]),
+            SoaRgb::new(&mut r, &mut g, &mut b),
+        )
+        .unwrap();
+        let got = Vec3::new(r[0], g[0], b[0]);
+        assert!(
+            range.holds(got),
+            "{level}: batch {got} outside [{}, {}]",
+            range.lo,
+            range.hi
+        );
+    }
+}
+
+/// Found by tests/fuzz_promises.rs: the ambient sum `Σ La` passes `f32::MAX` (one light's ambient
+/// is `f32::MAX`), so the rule saturates it before `Ka = 0.17` scales it; the kernel used to fold
+/// `Ka ⊙ La` per light (allowed only when nothing can overflow) and skipped that saturation.
+#[test]
+fn a_saturating_ambient_sum_is_not_folded() {
+    let colors = |a: Vec3| LightColors::try_new(a, Vec3::splat(0.5), Vec3::splat(0.5)).unwrap();
+    let lights = [
+        DirectionalLight::try_new(Vec3::X, colors(Vec3::new(1.0, 3.14e34, 1.0))).unwrap(),
+        DirectionalLight::try_new(Vec3::Y, colors(Vec3::new(1.0, f32::MAX, 1.0))).unwrap(),
+    ];
+    let material = Material::try_new(Vec3::splat(0.17281538), Vec3::ONE, Vec3::ONE, 32.0).unwrap();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(3.0, 8.0, 1.0)),
+    };
+    assert_batch_in_range(
+        Phong::default().into(),
+        &material,
+        &scene,
+        Vec3::ZERO,
+        Vec3::new(-0.5, 0.5, 0.7),
+    );
+}
+
+/// Found by tests/fuzz_promises.rs: a light's diffuse colour times the material's (`3.9e34 ·
+/// 1.8e19`) overflows `f32` even though the light's attenuation (`≈ 2e-25`) makes every shaded
+/// value modest; folding that product gave `f32::MAX` where the equation gives at most ~1e10.
+#[test]
+fn a_colour_product_past_max_is_not_folded() {
+    let lamp = PointLight::try_new(
+        Vec3::ZERO,
+        Attenuation::try_polynomial(4.6752956e24, 2.2371418e26, 0.0).unwrap(),
+        LightColors::try_new(
+            Vec3::splat(0.3),
+            Vec3::new(0.0, 3.8989763e34, 0.0),
+            Vec3::ONE,
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let lights = [lamp];
+    let material = Material::try_new(
+        Vec3::ONE,
+        Vec3::new(0.0, 1.7732853e19, 0.0),
+        Vec3::ONE,
+        0.27,
+    )
+    .unwrap();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::ZERO),
+    };
+    assert_batch_in_range(
+        BlinnPhong::default().into(),
+        &material,
+        &scene,
+        Vec3::new(-0.00012388136, 0.00017625102, 2.1709244e-5),
+        Vec3::new(-0.8513977, 0.39934915, 0.3400623),
+    );
+}

@@ -136,6 +136,13 @@ fn cannot_overflow<L: BatchLight>(
     } else {
         f64::from(lm.specular_scale)
     };
+    let (ka, kd, ks, ke) = (
+        d3(material.ambient()),
+        d3(material.diffuse()),
+        d3(material.specular()),
+        d3(material.emission()),
+    );
+    let half = 0.5 * f64::from(math::MAX);
     for light in scene.lights {
         let f = light.lane_light().map_or(1.0, |l| factor_max(&l));
         let c = light.colors();
@@ -144,15 +151,21 @@ fn cannot_overflow<L: BatchLight>(
             a[i] += f * la[i];
             d[i] += f * ld[i];
             s[i] += f * spec * ls[i];
+            // The folded kernel multiplies each light's colours by the material's before the
+            // factor: those products must stay finite even where the factor would shrink them.
+            if ka[i] * la[i] >= half || kd[i] * ld[i] >= half || ks[i] * spec * ls[i] >= half {
+                return false;
+            }
         }
     }
-    let (ka, kd, ks, ke) = (
-        d3(material.ambient()),
-        d3(material.diffuse()),
-        d3(material.specular()),
-        d3(material.emission()),
-    );
-    (0..3).all(|i| ka[i] * a[i] + kd[i] * d[i] + ks[i] * s[i] + ke[i] < 0.5 * f64::from(math::MAX))
+    // The sums themselves too: the rule saturates a sum before the material multiplies it, so a
+    // sum past `f32::MAX` under a reflectance below 1 must not be folded into the products.
+    (0..3).all(|i| {
+        a[i] < half
+            && d[i] < half
+            && s[i] < half
+            && ka[i] * a[i] + kd[i] * d[i] + ks[i] * s[i] + ke[i] < half
+    })
 }
 
 /// Everything constant over one call.

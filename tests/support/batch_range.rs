@@ -10,6 +10,9 @@ use phong::{
     LightSource, Material, Model, Normalization, PowStrategy, Scene, SpecularGate, Viewer,
 };
 
+/// The most `f32` operations between a light's inputs and the output channel, each of which may
+/// underflow into the subnormal range (see `range`).
+pub const UNDERFLOW_OPS: f64 = 32.0;
 /// `f32`'s unit roundoff.
 pub const U: f64 = 1.0 / 16_777_216.0;
 /// How far each cosine the kernel uses may be from the exact one (module docs: `η`).
@@ -44,9 +47,12 @@ fn clamp_iv((a, b): Iv, lo: f64, hi: f64) -> Iv {
     (a.clamp(lo, hi), b.clamp(lo, hi))
 }
 
-/// The cosine `c` moved by up to `ETA`, kept in `[−1, 1]`.
+/// The cosine `c` moved by up to `ETA`. Not clamped to `[−1, 1]`: the promise is only that a
+/// cosine the kernel uses is within `ETA` of the exact one, and dot products of rounded unit vectors
+/// do leave `[−1, 1]` by a few ulps (with `L ≈ −V`, an `L·V` of `−1 − 2⁻²⁴` moves Phong's
+/// `R·V = 2(N·L)(N·V) − L·V` up by an ulp, which the exponent then multiplies).
 fn cosine(c: f64) -> Iv {
-    clamp_iv((c - ETA, c + ETA), -1.0, 1.0)
+    (c - ETA, c + ETA)
 }
 
 fn mul_iv(a: Iv, b: Iv) -> Iv {
@@ -122,13 +128,26 @@ pub fn range<L: LightSource>(
     // The three sums per channel, at the low and the high end.
     let (mut a, mut d, mut sp) = ([ia, ia], [DVec3::ZERO; 2], [DVec3::ZERO; 2]);
     let mut huge = false;
+    // Gradual underflow: each f32 operation whose result falls below 2⁻¹²⁶ errs by up to 2⁻¹⁵⁰
+    // absolute instead of relatively, and that error is multiplied by whatever follows it: at most
+    // the light's factor, the normalisation factor and the light's and the material's colours, each
+    // where it exceeds 1. `UNDERFLOW_OPS` bounds the operations per light.
+    let big = |x: Vec3| x.as_dvec3().max(DVec3::ONE);
+    let mut underflow = big(scene.ambient.max(Vec3::ZERO)) * big(material.ambient());
     for light in scene.lights {
         let sample = light.sample(p);
         let f0 = sample.factor as f64;
+        let c = light.colors();
+        let k_norm = normalization
+            .phong_factor(s as f32)
+            .max(normalization.blinn_factor(s as f32));
+        underflow += f0.max(1.0)
+            * (big(c.ambient()) * big(material.ambient())
+                + big(c.diffuse()) * big(material.diffuse())
+                + big(c.specular()) * big(material.specular()) * (k_norm as f64).max(1.0));
         if f0 == 0.0 {
             continue;
         }
-        let c = light.colors();
         // `shade` before the saturation rule clamped each light's colour × material product.
         let products = [
             c.ambient() * material.ambient(),
@@ -205,9 +224,10 @@ pub fn range<L: LightSource>(
         || [a[1], d[1], sp[1], k[0] * a[1], k[1] * d[1], k[2] * sp[1]]
             .iter()
             .any(|x| x.max_element() >= 0.5 * MAX);
+    let underflow = underflow * UNDERFLOW_OPS * 2f64.powi(-150);
     Range {
-        lo: rule(0, 1.0 - rho),
-        hi: rule(1, 1.0 + rho),
+        lo: (rule(0, 1.0 - rho) - underflow).max(DVec3::ZERO),
+        hi: rule(1, 1.0 + rho) + underflow,
         saturated,
     }
 }
