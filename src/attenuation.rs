@@ -18,8 +18,9 @@ use crate::math;
 /// | `Unreal` | `saturate(1 − (d/r)⁴)² / (d² + 1)` (Karis 2013) |
 /// | `Frostbite` | `saturate(1 − (d/r)⁴)² / max(d², ε²)` (Lagarde & de Rousiers 2014) |
 ///
-/// **Domain:** coefficients, power, radius and `ε` finite and `≥ 0` (radius and `ε` `> 0`); the
-/// `try_*` constructors check this and name the bad field. The factor is evaluated robustly for any
+/// **Domain:** coefficients and power finite and `≥ 0`; radius and `ε` finite and at least
+/// `f32::MIN_POSITIVE` (positive, not subnormal). The `try_*` constructors and
+/// [`validated`](Attenuation::validated) check this and name the bad field. The factor is evaluated robustly for any
 /// field values (it is always finite and `≥ 0`), but monotonicity and [`cull_radius`] assume the
 /// documented domain.
 ///
@@ -151,7 +152,8 @@ impl Attenuation {
         })
     }
 
-    /// `P / max(d², ε²)` with a chosen `ε`, checked: `P` finite and `≥ 0`, `ε` finite and `> 0`.
+    /// `P / max(d², ε²)` with a chosen `ε`, checked: `P` finite and `≥ 0`,
+    /// `ε` in `[f32::MIN_POSITIVE, f32::MAX]`.
     ///
     /// ```
     /// use phong::Attenuation;
@@ -170,14 +172,28 @@ impl Attenuation {
         .validated()
     }
 
-    /// The Unreal windowed form with radius `r`, checked: `r` finite and `> 0`.
+    /// The Unreal windowed form with radius `r`, checked: `r` in `[f32::MIN_POSITIVE, f32::MAX]`
+    /// (finite, positive and not subnormal).
+    ///
+    /// **Errors:** [`PhongError::NonFinite`] for NaN or ±∞, [`PhongError::Negative`] below 0, and
+    /// [`PhongError::OutOfRange`] for 0 and subnormal radii.
+    ///
+    /// ```
+    /// use phong::{Attenuation, PhongError};
+    /// assert!(Attenuation::try_unreal(10.0).is_ok());
+    /// assert!(matches!(
+    ///     Attenuation::try_unreal(2e-39), // subnormal
+    ///     Err(PhongError::OutOfRange { field: "attenuation.radius", .. })
+    /// ));
+    /// ```
     pub fn try_unreal(radius: f32) -> Result<Self, PhongError> {
         Ok(Attenuation::Unreal {
             radius: positive("attenuation.radius", radius)?,
         })
     }
 
-    /// The Frostbite windowed form with radius `r` and the default `ε`, checked: `r` finite, `> 0`.
+    /// The Frostbite windowed form with radius `r` and the default `ε`, checked: `r` in
+    /// `[f32::MIN_POSITIVE, f32::MAX]`, with the errors of [`try_unreal`](Self::try_unreal).
     pub fn try_frostbite(radius: f32) -> Result<Self, PhongError> {
         Ok(Attenuation::Frostbite {
             radius: positive("attenuation.radius", radius)?,
@@ -185,7 +201,8 @@ impl Attenuation {
         })
     }
 
-    /// The Frostbite windowed form with radius `r` and a chosen `ε`, checked: both finite and `> 0`.
+    /// The Frostbite windowed form with radius `r` and a chosen `ε`, checked: both in
+    /// `[f32::MIN_POSITIVE, f32::MAX]`.
     pub fn try_frostbite_with_min_distance(
         radius: f32,
         min_distance: f32,
@@ -197,7 +214,8 @@ impl Attenuation {
         .validated()
     }
 
-    /// Checks the fields of any variant, as the `try_*` constructors do; returns `self` if valid.
+    /// Checks the fields of any variant, as the `try_*` constructors do; returns `self` if valid:
+    /// coefficients and power finite and `≥ 0`, radius and `ε` in `[f32::MIN_POSITIVE, f32::MAX]`.
     ///
     /// Use it after building a variant literally, or after deserialising one.
     pub fn validated(self) -> Result<Self, PhongError> {
@@ -412,9 +430,13 @@ impl Attenuation {
     }
 }
 
+/// Checks a radius or `ε`: finite and at least `f32::MIN_POSITIVE`, the interval its error names.
+///
+/// Subnormal values are rejected with the zero: the error says the value must lie in
+/// `[f32::MIN_POSITIVE, f32::MAX]`, and accepting `2e-39` would contradict that message.
 fn positive(field: &'static str, value: f32) -> Result<f32, PhongError> {
     let v = error::non_negative(field, value)?;
-    if v == 0.0 {
+    if v < f32::MIN_POSITIVE {
         Err(PhongError::OutOfRange {
             field,
             value,
