@@ -103,8 +103,12 @@ impl Attenuation {
     /// The default `ε` of the inverse-square forms: 0.01 (a centimetre when units are metres).
     pub const DEFAULT_MIN_DISTANCE: f32 = 0.01;
 
-    /// The polynomial form `1/(c + l·d + q·d²)`, without checks (debug builds assert the domain;
-    /// release builds map negative or non-finite coefficients to 0).
+    /// The polynomial form `1/(c + l·d + q·d²)`, without checks.
+    ///
+    /// **Domain:** every coefficient finite and `≥ 0`; debug builds assert it. Release builds apply
+    /// the crate's rule for unchecked constructors to each coefficient: NaN and negatives (`−∞`
+    /// included) become 0, and `+∞` (an overflowed coefficient) saturates at `f32::MAX`. Use
+    /// [`try_polynomial`](Self::try_polynomial) to reject such values instead.
     ///
     /// ```
     /// use phong::Attenuation;

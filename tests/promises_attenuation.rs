@@ -100,3 +100,71 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// 2. The unchecked polynomial constructor: NaN and negatives → 0, +∞ → f32::MAX
+// ---------------------------------------------------------------------------------------------
+
+/// `Attenuation::polynomial(c, l, q)` in a release build, or `None` where the debug assertion
+/// fired (debug builds assert the domain, as documented).
+fn unchecked_polynomial(c: f32, l: f32, q: f32) -> Option<Attenuation> {
+    std::panic::catch_unwind(|| Attenuation::polynomial(c, l, q)).ok()
+}
+
+/// The documented release-build rule for one coefficient.
+fn sanitised(x: f32) -> f32 {
+    if x.is_nan() || x < 0.0 {
+        0.0
+    } else {
+        x.min(f32::MAX)
+    }
+}
+
+#[test]
+fn unchecked_polynomial_saturates_infinity_as_documented() {
+    // Reproducer: polynomial(0, 0, +∞) keeps f32::MAX (the crate-wide rule), while its doc said
+    // non-finite coefficients become 0. The doc now states the rule; this pins the behaviour.
+    let got = unchecked_polynomial(0.0, 0.0, f32::INFINITY);
+    if cfg!(debug_assertions) {
+        assert_eq!(got, None, "debug builds assert the domain");
+    } else {
+        let want = Attenuation::Polynomial {
+            constant: 0.0,
+            linear: 0.0,
+            quadratic: f32::MAX,
+        };
+        assert_eq!(got, Some(want));
+        let all = unchecked_polynomial(f32::NAN, -1.0, f32::NEG_INFINITY);
+        let zero = Attenuation::Polynomial {
+            constant: 0.0,
+            linear: 0.0,
+            quadratic: 0.0,
+        };
+        assert_eq!(all, Some(zero));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// Any coefficients: a debug build panics exactly when `try_polynomial` rejects them; a
+    /// release build keeps valid ones bit for bit and sanitises the others by the documented rule.
+    #[test]
+    fn unchecked_polynomial_follows_the_crate_rule(c in any_bits(), l in any_bits(), q in any_bits()) {
+        let checked = Attenuation::try_polynomial(c, l, q);
+        match unchecked_polynomial(c, l, q) {
+            None => prop_assert!(cfg!(debug_assertions) && checked.is_err()),
+            Some(a) => {
+                if let Ok(v) = checked {
+                    prop_assert_eq!(a, v);
+                }
+                let want = Attenuation::Polynomial {
+                    constant: sanitised(c),
+                    linear: sanitised(l),
+                    quadratic: sanitised(q),
+                };
+                prop_assert_eq!(a, want);
+            }
+        }
+    }
+}
