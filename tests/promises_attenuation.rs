@@ -4,6 +4,10 @@
 //!
 //! 1. the checked constructors reject exactly what their error says is out of range (subnormal
 //!    radii and `ε` included);
+//! 2. the unchecked polynomial constructor follows the crate's rule (NaN and negatives become 0,
+//!    `+∞` saturates at `f32::MAX`) that its doc states;
+//! 3. `factor` is finite, `≥ 0`, non-increasing in `d` and close to the exact formula for every
+//!    valid form, radii and distances up to `f32::MAX` included (the window's `r + d` overflowed);
 
 use phong::{Attenuation, PhongError};
 use proptest::prelude::*;
@@ -166,5 +170,248 @@ proptest! {
                 prop_assert_eq!(a, want);
             }
         }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared strategies and the exact formula
+// ---------------------------------------------------------------------------------------------
+
+/// The unit roundoff of `f32`, `2⁻²⁴`: one correctly rounded operation is off by at most this
+/// much relatively (for results in the normal range).
+const U: f64 = 1.0 / (1u64 << 24) as f64;
+
+/// Results below this are compared absolutely: subnormal results carry absolute rounding errors
+/// (at most `2⁻¹⁵⁰` per operation) rather than relative ones, and Unreal's `d² + 1` overflows to
+/// `+∞` (a factor of 0) only for `d > 1.8e19`, where the exact factor is below `1/d² < 2⁻¹²⁸`.
+const TINY: f64 = f32::MIN_POSITIVE as f64;
+
+/// A positive `f32` spread evenly over the bit patterns of `[lo, hi]`: every binade is as likely
+/// as every other, so `1e-30` and `1e30` come up as often as `1`.
+fn log_f32(lo: f32, hi: f32) -> impl Strategy<Value = f32> {
+    (lo.to_bits()..=hi.to_bits()).prop_map(f32::from_bits)
+}
+
+/// A polynomial coefficient or power: 0, ordinary, any magnitude up to `f32::MAX` (subnormal
+/// included), and the values where the fuzz campaign found overflow.
+fn coefficient() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        2 => Just(0.0f32),
+        2 => 0.0f32..4.0,
+        4 => log_f32(1e-45, f32::MAX),
+        2 => log_f32(1e30, f32::MAX),
+        1 => prop::sample::select(vec![1.0f32, f32::MAX, 3.4e38, 1e38, f32::MIN_POSITIVE, 1e-45]),
+    ]
+}
+
+/// A valid radius or `ε`: `[f32::MIN_POSITIVE, f32::MAX]`, with huge and ordinary ones weighted up.
+fn length() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        4 => log_f32(f32::MIN_POSITIVE, f32::MAX),
+        2 => log_f32(1e30, f32::MAX),
+        2 => 0.05f32..100.0,
+        1 => prop::sample::select(vec![
+            f32::MIN_POSITIVE,
+            0.01,
+            0.5,
+            1.0,
+            1e30,
+            1e37,
+            3e38,
+            f32::MAX,
+        ]),
+    ]
+}
+
+/// Any form with valid parameters (what `validated()` accepts).
+fn valid_form() -> impl Strategy<Value = Attenuation> {
+    prop_oneof![
+        1 => Just(Attenuation::None),
+        3 => (coefficient(), coefficient(), coefficient()).prop_map(|(constant, linear, quadratic)| {
+            Attenuation::Polynomial { constant, linear, quadratic }
+        }),
+        2 => (coefficient(), prop_oneof![Just(0.01f32), length()])
+            .prop_map(|(power, min_distance)| Attenuation::InverseSquare { power, min_distance }),
+        3 => length().prop_map(|radius| Attenuation::Unreal { radius }),
+        3 => (length(), prop_oneof![Just(0.01f32), length()])
+            .prop_map(|(radius, min_distance)| Attenuation::Frostbite { radius, min_distance }),
+    ]
+    .prop_map(|a| a.validated().expect("the strategy builds valid forms"))
+}
+
+/// The length that sets the scale of a form's features: its radius, or `ε`, or 1.
+fn scale(a: &Attenuation) -> f32 {
+    match *a {
+        Attenuation::Unreal { radius } | Attenuation::Frostbite { radius, .. } => radius,
+        Attenuation::InverseSquare { min_distance, .. } => min_distance,
+        _ => 1.0,
+    }
+}
+
+/// A distance in `[0, f32::MAX]` for a feature of length `s`: anywhere (every binade), a fraction
+/// of `s`, just below `s` (where the window vanishes), at `s`, or 0.
+fn distance(s: f32) -> impl Strategy<Value = f32> {
+    prop_oneof![
+        3 => log_f32(1e-45, f32::MAX),
+        3 => (0.0f64..1.5).prop_map(move |k| (s as f64 * k).min(f32::MAX as f64) as f32),
+        2 => (1i32..40).prop_map(move |k| (s as f64 * (1.0 - 2f64.powi(-k))) as f32),
+        1 => (0u32..64).prop_map(move |k| f32::from_bits(s.to_bits().saturating_sub(k))),
+        1 => Just(s),
+        1 => Just(0.0f32),
+    ]
+}
+
+/// A valid form and two distances `d1 ≤ d2`: independent, or neighbours (one ulp, a few ulps, a
+/// relative step) where rounding could reverse the order of the factors.
+fn form_and_two_distances() -> impl Strategy<Value = (Attenuation, f32, f32)> {
+    valid_form().prop_flat_map(|a| {
+        let s = scale(&a);
+        let second = prop_oneof![
+            distance(s).prop_map(Some),
+            (1u32..5).prop_map(|k| None.or(Some(-(k as f32)))),
+            (1e-7f64..1e-2).prop_map(|k| Some(-(1.0 + k as f32))),
+        ];
+        (Just(a), distance(s), second).prop_map(|(a, d1, second)| {
+            // Negative markers ask for a neighbour of d1: -k for k ulps up, -(1 + δ) for d1·(1 + δ).
+            let d2 = match second {
+                Some(v) if v >= 0.0 => v,
+                Some(v) if v > -1.0 || v.fract() == 0.0 && v >= -4.0 => {
+                    f32::from_bits((d1.to_bits() + (-v) as u32).min(f32::MAX.to_bits()))
+                }
+                Some(v) => ((d1 as f64) * (-v as f64)).min(f32::MAX as f64) as f32,
+                None => d1,
+            };
+            (a, d1.min(d2), d1.max(d2))
+        })
+    })
+}
+
+/// The exact factor (the formula in the table on `Attenuation`), in `f64`, saturated at
+/// `f32::MAX` as the crate documents. The window is the direct `(1 − (d/r)⁴)²`, independent of
+/// the crate's factored form: for `f32` arguments `d < r` it is `1 − x⁴ ≥ 2⁻²³`, so its `f64`
+/// rounding (a few `2⁻⁵³` absolutely) is below `2⁻²⁸` relatively, far inside every tolerance here.
+fn exact(a: &Attenuation, d: f32) -> f64 {
+    let d = d as f64;
+    let window = |r: f32| {
+        let r = r as f64;
+        if d < r {
+            let x2 = (d / r) * (d / r);
+            (1.0 - x2 * x2) * (1.0 - x2 * x2)
+        } else {
+            0.0
+        }
+    };
+    let f = match *a {
+        Attenuation::None => 1.0,
+        Attenuation::Polynomial {
+            constant,
+            linear,
+            quadratic,
+        } => {
+            let den = constant as f64 + linear as f64 * d + quadratic as f64 * d * d;
+            1.0 / den.max(Attenuation::MIN_DENOMINATOR as f64)
+        }
+        Attenuation::InverseSquare {
+            power,
+            min_distance,
+        } => power as f64 / d.max(min_distance as f64).powi(2),
+        Attenuation::Unreal { radius } => window(radius) / (d * d + 1.0),
+        Attenuation::Frostbite {
+            radius,
+            min_distance,
+        } => window(radius) / d.max(min_distance as f64).powi(2),
+    };
+    f.min(f32::MAX as f64)
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. factor: finite, ≥ 0, non-increasing and accurate over the whole f32 range
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn frostbite_with_a_huge_radius_vanishes_at_its_edge() {
+    // Reproducer: (r + d)/r overflowed in the window, so the factor just inside r = 3e38 was
+    // f32::MAX where the formula gives about 1e-77, and factor(0) = 1e4 < factor(3e38).
+    let f = Attenuation::Frostbite {
+        radius: 3e38,
+        min_distance: 0.01,
+    };
+    let d = 2.999_999_8e38f32;
+    let got = f.factor(d);
+    assert_eq!(
+        got,
+        0.0,
+        "factor({d:e}) = {got:e}; the exact value {:e} underflows",
+        exact(&f, d)
+    );
+    assert_eq!(f.factor(0.0), 1e4);
+    assert!(f.factor(3e38) <= f.factor(0.0));
+    // Where the exact value is representable, factor keeps the window's relative precision: at
+    // d = 0.9·r and 2⁻²⁰ below r the window itself, unscaled, is what Unreal at radius 1 gives.
+    let u = Attenuation::Unreal { radius: 3e38 };
+    for k in [0.5f64, 0.9, 1.0 - 2f64.powi(-20)] {
+        let d = (3e38 * k) as f32;
+        let (got, want) = (u.factor(d), exact(&u, d));
+        assert!(
+            got as f64 <= want + TINY,
+            "Unreal 3e38 at {d:e}: {got:e} vs {want:e}"
+        );
+    }
+    let one = Attenuation::Unreal {
+        radius: 1.0 - 2f32.powi(-24),
+    };
+    let near = 1.0 - 2f32.powi(-23); // the window is about 2⁻⁴⁴ here
+    let (got, want) = (one.factor(near) as f64, exact(&one, near));
+    assert!((got - want).abs() <= 32.0 * U * want, "{got:e} vs {want:e}");
+}
+
+#[test]
+fn no_factor_exceeds_its_value_at_the_light() {
+    // Rounding lifted the window an ulp above 1 for about 1.5 % of small d/r, so Unreal at a
+    // tiny radius and Frostbite below ε gave factor(d) > factor(0) (here: the first such case a
+    // scan found). cull_radius returns 0 when factor(0) < t, which needs factor(d) ≤ factor(0).
+    let u = Attenuation::Unreal {
+        radius: 1.447_747e-8,
+    };
+    let d = 1.253_255_6e-10;
+    assert!(
+        u.factor(d) <= u.factor(0.0),
+        "{} > {}",
+        u.factor(d),
+        u.factor(0.0)
+    );
+    let f = Attenuation::Frostbite {
+        radius: 1.447_747e-8,
+        min_distance: 0.01,
+    };
+    assert!(
+        f.factor(d) <= f.factor(0.0),
+        "{} > {}",
+        f.factor(d),
+        f.factor(0.0)
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+    /// Non-increasing in `d`: exactly for the polynomial and inverse-square forms (every
+    /// operation in their evaluation is monotone in `d`), and within rounding for the windowed
+    /// ones. There each factor is within 21u of the exact, decreasing formula, plus at most
+    /// `2⁻¹⁴⁹` absolutely from underflow, so `factor(d2) ≤ factor(d1)·(1 + 21u)/(1 − 21u) + 2·2⁻¹⁴⁹`,
+    /// below the `factor(d1)·(1 + 2⁻¹⁸) + 2⁻¹⁴⁷` asserted (`2⁻¹⁸` = 64u).
+    #[test]
+    fn factor_is_non_increasing((a, d1, d2) in form_and_two_distances()) {
+        let (f1, f2) = (a.factor(d1), a.factor(d2));
+        let windowed = matches!(a, Attenuation::Unreal { .. } | Attenuation::Frostbite { .. });
+        let slack = if windowed {
+            f1 as f64 * 2f64.powi(-18) + 2f64.powi(-147)
+        } else {
+            0.0
+        };
+        prop_assert!(
+            f2 as f64 <= f1 as f64 + slack,
+            "{a:?}: factor({d1:e}) = {f1:e} < factor({d2:e}) = {f2:e}"
+        );
     }
 }
