@@ -96,6 +96,31 @@ fn window(d: f32, r: f32) -> f32 {
     }
 }
 
+/// The polynomial factor where its `f32` denominator `c + d·(l + q·d)` overflowed (for a finite
+/// `d ≥ 0` and coefficients in `[0, f32::MAX]`): the same Horner form in `f64`, which cannot
+/// overflow (it is below `2³⁸⁵`), rounded once to `f32`.
+///
+/// Out of line and cold, so the common path of [`Attenuation::factor`] keeps one comparison.
+///
+/// **Monotone across the switch.** The `f32` path's denominator `D₁` at any smaller distance is
+/// at most 4 roundings above the exact one, plus absolute underflow errors below `2⁻²⁰`. Where the
+/// `f32` denominator overflows, the exact one is at least `2¹⁰⁰` (each way of overflowing needs
+/// `l + q·d ≳ 2¹²⁸` with `d ≳ 2⁻²⁵`, or `d·(l + q·d)` or the sum `≳ 2¹²⁸`), so those absolute
+/// errors are below `2⁻¹²⁰` of it, and `D₁ ≤ den·(1 + 4.01·2⁻²⁴)`. The `f64` denominator (3
+/// roundings of `2⁻⁵³`; `q·d` is exact) is raised by `2⁻²¹ = 8·2⁻²⁴`, so it exceeds every such
+/// `D₁`, and the result is at most the `f32` path's `1/D₁`: the factor stays non-increasing in
+/// `d`, which [`Attenuation::cull_radius`]'s bisection relies on. The price is a relative error
+/// of at most `2⁻²¹` plus the final rounding, the size of the `f32` path's own.
+#[cold]
+#[inline(never)]
+fn polynomial_overflowed(constant: f32, linear: f32, quadratic: f32, d: f32) -> f32 {
+    let (c, l, q, d) = (constant as f64, linear as f64, quadratic as f64, d as f64);
+    let den = c + d * (l + q * d);
+    let f = 1.0 / (den * (1.0 + 1.0 / (1u32 << 21) as f64));
+    // ∞ coefficients (outside the domain) give 1/∞ = 0; NaN cannot arise from a finite d.
+    math::clamp_or_lo(f as f32, 0.0, math::MAX)
+}
+
 /// [`window`] in `f64`, the same factored form (no cancellation near `d = r`), for the root
 /// search of the cull radius.
 fn window_f64(d: f64, r: f64) -> f64 {
@@ -272,6 +297,12 @@ impl Attenuation {
     /// limit. **Returns** a finite value in `[0, f32::MAX]`, also at `d = 0` (where the inverse-square
     /// forms give `P/ε²` and the polynomial at most `1/MIN_DENOMINATOR`).
     ///
+    /// **Accuracy:** against the exact formula, at most 5 roundings (`5·2⁻²⁴` relatively) for the
+    /// polynomial, 2 for the inverse-square and 20 for the windowed forms, with results below
+    /// `f32::MIN_POSITIVE` only absolutely accurate (subnormal). A polynomial whose `f32`
+    /// denominator overflows (a coefficient near `f32::MAX`) is evaluated in `f64` out of line,
+    /// to within `2⁻²¹` plus one rounding, instead of giving 0.
+    ///
     /// **Monotone:** for valid parameters the factor never exceeds `factor(0)`, and is
     /// non-increasing in `d`: exactly for `None`, the polynomial and the inverse-square forms
     /// (every operation of their evaluation is monotone in `d`), and within rounding for the
@@ -300,6 +331,10 @@ impl Attenuation {
                 // Horner form: no ∞·0 for any finite d, so no NaN; the denominator is at least
                 // MIN_DENOMINATOR, so the factor is finite.
                 let den = constant + d * (linear + quadratic * d);
+                if den == f32::INFINITY {
+                    // A coefficient near f32::MAX: 1/∞ = 0 would lose a representable factor.
+                    return polynomial_overflowed(constant, linear, quadratic, d);
+                }
                 math::clamp_or_lo(
                     1.0 / math::max_or(den, Self::MIN_DENOMINATOR),
                     0.0,

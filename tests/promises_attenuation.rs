@@ -8,6 +8,8 @@
 //!    `+∞` saturates at `f32::MAX`) that its doc states;
 //! 3. `factor` is finite, `≥ 0`, non-increasing in `d` and close to the exact formula for every
 //!    valid form, radii and distances up to `f32::MAX` included (the window's `r + d` overflowed);
+//! 4. a polynomial with a coefficient near `f32::MAX` keeps its representable factor (its `f32`
+//!    denominator overflowed to `+∞`, giving 0);
 
 use phong::{Attenuation, PhongError};
 use proptest::prelude::*;
@@ -324,6 +326,24 @@ fn exact(a: &Attenuation, d: f32) -> f64 {
     f.min(f32::MAX as f64)
 }
 
+/// How far `factor` may be from [`exact`], relatively, by the number of roundings in its
+/// evaluation:
+/// - polynomial: 4 in the denominator and 1 in the division (5u); where the `f32` denominator
+///   overflows, the `f64` evaluation is deliberately lowered by up to 8u (see `factor`), plus one
+///   rounding to `f32`: 9u. Bound 16u.
+/// - inverse square: two divisions (the `max` is exact): 2u. Bound 4u.
+/// - windowed: the window squared, 17u (see `window`), then `d² + 1` and the division (3u) or two
+///   divisions (2u): 20u, plus below 1u for the `f64` reference's own rounding near `d = r`.
+///   Bound 32u = 2⁻¹⁹, the margin `cull_radius` uses.
+fn tolerance(a: &Attenuation) -> f64 {
+    match a {
+        Attenuation::None => 0.0,
+        Attenuation::Polynomial { .. } => 16.0 * U,
+        Attenuation::InverseSquare { .. } => 4.0 * U,
+        _ => 32.0 * U,
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3. factor: finite, ≥ 0, non-increasing and accurate over the whole f32 range
 // ---------------------------------------------------------------------------------------------
@@ -392,8 +412,107 @@ fn no_factor_exceeds_its_value_at_the_light() {
     );
 }
 
+#[test]
+fn polynomial_with_a_huge_coefficient_keeps_its_factor() {
+    // Reproducer: l + q·d overflowed to +∞ although the denominator d·(l + q·d) is 3.4e36, so
+    // the factor was 0 instead of 2.9e-37.
+    let p = Attenuation::Polynomial {
+        constant: 0.0,
+        linear: 3.4e38,
+        quadratic: 1e38,
+    };
+    let (got, want) = (p.factor(0.01) as f64, exact(&p, 0.01));
+    assert!(want > 2.9e-37 && want < 3e-37, "{want:e}");
+    // The f64 path: within 2⁻²¹ (its deliberate lowering) plus one f32 rounding; bound 16u.
+    assert!((got - want).abs() <= 16.0 * U * want, "{got:e} vs {want:e}");
+    // The same near every overflow: of q·d, of l + q·d, of the product, of the sum.
+    let cases = [
+        (0.0, 0.0, f32::MAX, 2.0),
+        (0.0, f32::MAX, 1e30, 20.0),
+        (0.0, 1e30, 0.0, 1e9),
+        (f32::MAX, 1.0, 0.0, 1e38),
+    ];
+    for (constant, linear, quadratic, d) in cases {
+        let p = Attenuation::Polynomial {
+            constant,
+            linear,
+            quadratic,
+        };
+        let (got, want) = (p.factor(d) as f64, exact(&p, d));
+        assert!(got > 0.0, "{p:?} at {d:e}");
+        assert!(
+            (got - want).abs() <= 16.0 * U * want + TINY,
+            "{p:?} at {d:e}: {got:e} vs {want:e}"
+        );
+    }
+}
+
+#[test]
+fn polynomial_is_monotone_where_its_denominator_starts_to_overflow() {
+    // The f64 path takes over at the first d whose f32 denominator overflows; there the factor
+    // must not rise above the f32 path's value one ulp earlier (the f64 denominator is raised by
+    // 2⁻²¹ for that). Walk across the switch for coefficients that overflow in each place.
+    let forms = [
+        (0.0f32, 3.4e38f32, 1e38f32),
+        (0.0, f32::MAX, f32::MAX),
+        (0.0, 0.0, f32::MAX),
+        (0.0, 3e38, 1.0),
+        (3e38, 1.0, 0.0),
+        (1.0, 1e20, 1e30),
+        // Found by a random scan: without the 2⁻²¹ the factor rose across the switch here by a
+        // few units in the last place (5.622784e-39 → 5.622786e-39, 2.3121098e-38 → 2.31211e-38).
+        (1.461_032_1e38, 3.287_677_4e38, 1.234_295_7e38),
+        (3.813_231_2e37, 3.398_706_5e38, 2.737_18e37),
+    ];
+    for (constant, linear, quadratic) in forms {
+        let p = Attenuation::Polynomial {
+            constant,
+            linear,
+            quadratic,
+        };
+        // The first overflowing d, by bisection over the bit patterns (the f32 denominator is
+        // monotone in d).
+        let den = |d: f32| constant + d * (linear + quadratic * d);
+        let (mut lo, mut hi) = (0u32, f32::MAX.to_bits());
+        assert!(den(f32::MAX).is_infinite() && den(0.0).is_finite());
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if den(f32::from_bits(mid)).is_infinite() {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let mut prev = p.factor(f32::from_bits(lo.saturating_sub(64)));
+        for bits in lo.saturating_sub(63)..=(hi + 64).min(f32::MAX.to_bits()) {
+            let d = f32::from_bits(bits);
+            let f = p.factor(d);
+            assert!(f <= prev, "{p:?}: factor rises at {d:e}: {prev:e} -> {f:e}");
+            prev = f;
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+    /// Finite, `≥ 0`, at most `factor(0)`, and within [`tolerance`] of the exact formula
+    /// (relatively, or absolutely below `f32::MIN_POSITIVE`).
+    #[test]
+    fn factor_is_finite_bounded_and_accurate(
+        (a, d, _) in form_and_two_distances(),
+    ) {
+        let f = a.factor(d);
+        prop_assert!(f.is_finite() && f >= 0.0, "{a:?}.factor({d:e}) = {f:e}");
+        prop_assert!(f <= a.factor(0.0), "{a:?}.factor({d:e}) = {f:e} > factor(0) = {:e}", a.factor(0.0));
+        let want = exact(&a, d);
+        let err = (f as f64 - want).abs();
+        prop_assert!(
+            err <= tolerance(&a) * want + TINY,
+            "{a:?}.factor({d:e}) = {f:e}, exact {want:e}: relative error {:e}",
+            err / want
+        );
+    }
 
     /// Non-increasing in `d`: exactly for the polynomial and inverse-square forms (every
     /// operation in their evaluation is monotone in `d`), and within rounding for the windowed
