@@ -2,9 +2,8 @@
 //!
 //! Every form is finite at `d = 0` and for every finite or infinite `d ≥ 0`, and non-increasing in
 //! `d` (for the documented, non-negative parameters; the windowed forms within rounding, see
-//! [`Attenuation::factor`]). [`Attenuation::cull_radius`] gives the distance
-//! beyond which the factor stays below a threshold, so a renderer can skip lights that cannot
-//! change a pixel. Derivations: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#attenuation).
+//! [`Attenuation::factor`]). [`Attenuation::cull_radius`] gives a distance beyond which the
+//! factor stays below a threshold, so a renderer can skip lights that cannot change a pixel. Derivations: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#attenuation).
 
 use crate::error::{self, PhongError};
 use crate::math;
@@ -21,9 +20,9 @@ use crate::math;
 ///
 /// **Domain:** coefficients and power finite and `≥ 0`; radius and `ε` finite and at least
 /// `f32::MIN_POSITIVE` (positive, not subnormal). The `try_*` constructors and
-/// [`validated`](Attenuation::validated) check this and name the bad field. The factor is evaluated robustly for any
-/// field values (it is always finite and `≥ 0`), but monotonicity and [`cull_radius`] assume the
-/// documented domain.
+/// [`validated`](Attenuation::validated) check this and name the bad field. The factor is
+/// evaluated robustly for any field values (it is always finite and `≥ 0`), but monotonicity and
+/// the promises of [`cull_radius`] assume the documented domain.
 ///
 /// [`cull_radius`]: Attenuation::cull_radius
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -375,26 +374,50 @@ impl Attenuation {
     /// The distance beyond which [`factor`](Self::factor) stays below `threshold`: lights farther
     /// than this from a point can be skipped.
     ///
-    /// ```text
-    /// cull_radius(t) = inf { r ≥ 0 : factor(d) < t for every d > r }
-    /// ```
+    /// **Promise (safe):** for valid parameters, `factor(d) < threshold` for every `d` greater
+    /// than the result, checked against this crate's own `f32` [`factor`](Self::factor), so a
+    /// renderer that culls with it never drops a light it would have shaded at `≥ threshold`.
     ///
-    /// | form | cull radius |
+    /// **Returns**, never NaN:
+    /// - `f32::INFINITY` ("never cull") for a NaN or non-positive threshold, and exactly when
+    ///   `factor(f32::MAX) ≥ t`: the light does not fade below `t` at any finite distance (`None`
+    ///   with `t ≤ 1`, a polynomial with `l = q = 0` and `1/c ≥ t`, or coefficients, power and
+    ///   threshold so extreme that, say, `1/(l·f32::MAX) ≥ t`).
+    /// - `0` when `factor(0) < t`: the factor never exceeds `factor(0)`, so it is below `t`
+    ///   everywhere.
+    /// - otherwise a finite `R`, found by bisection over the ordered bit patterns of the `f32`
+    ///   distances in `[0, f32::MAX]` (at most 31 steps, so exact at every scale: no tolerance,
+    ///   and no loss for huge radii):
+    ///   - `Polynomial`, `InverseSquare`: their `f32` factor is non-increasing, so `R` is the
+    ///     largest `f32` with `factor(R) ≥ t`, which is exactly tight:
+    ///     `factor(R) ≥ t > factor(R.next_up())`.
+    ///   - `Unreal`, `Frostbite`: the `f32` product of a decreasing and an increasing term can rise
+    ///     by an ulp, so `R` is the larger of that bisection's result and the largest `f32` below
+    ///     the radius where the exact formula (in `f64`) is at least `t·(1 − 2⁻¹⁹) − 2⁻¹⁴⁹`.
+    ///     `2⁻¹⁹` bounds the relative error of the `f32` factor (20 roundings of `2⁻²⁴`, see
+    ///     [`factor`](Self::factor)) and `2⁻¹⁴⁹` its absolute error where it is subnormal, so past
+    ///     that distance the `f32` factor is below `t`. `R ≤ radius`, and `R` is tight in the sense
+    ///     that the exact factor at `R` is at least `t·(1 − 2⁻¹⁹) − 2⁻¹⁴⁹`: where the factor is
+    ///     flat (`t` near `factor(0)`) `R` can lie well past the crossing of `t` itself.
+    ///
+    /// What it approximates, the exact crossing `inf { r ≥ 0 : factor(d) < t for every d > r }`:
+    ///
+    /// | form | exact cull radius |
     /// |---|---|
     /// | `None` | `+∞` for `t ≤ 1`, else 0 |
     /// | `Polynomial` | the positive root of `c + l·d + q·d² = 1/t` |
     /// | `InverseSquare` | `√(P/t)` |
-    /// | `Unreal`, `Frostbite` | `min(r, root of factor(d) = t)` (bisection, to 1e-6 relative) |
+    /// | `Unreal`, `Frostbite` | `min(r, root of factor(d) = t)` (a degree-8 polynomial) |
     ///
-    /// **Returns** `f32::INFINITY` exactly when the light never fades below the threshold (the `None`
-    /// form, a polynomial with `l = q = 0`, or `t ≤ 0`): that infinity means "never cull". 0 when the
-    /// factor is below `t` everywhere. A pick of `t` for 8-bit output is half a step of the
-    /// brightest colour the light can add: `t = 0.5 / (255 · max colour)`.
+    /// A pick of `t` for 8-bit output is half a step of the brightest colour the light can add:
+    /// `t = 0.5 / (255 · max colour)`.
     ///
     /// ```
     /// use phong::Attenuation;
     /// let q = Attenuation::polynomial(0.0, 0.0, 1.0);
-    /// assert!((q.cull_radius(0.01) - 10.0).abs() < 1e-5);
+    /// let r = q.cull_radius(0.01);
+    /// assert_eq!(r, 10.0); // 1/d² ≥ 0.01 up to d = 10 in f32, and not one ulp further
+    /// assert!(q.factor(r) >= 0.01 && q.factor(r.next_up()) < 0.01);
     /// assert_eq!(Attenuation::None.cull_radius(0.01), f32::INFINITY);
     /// let f = Attenuation::try_frostbite(5.0).unwrap();
     /// assert!(f.cull_radius(1e-9) <= 5.0);
@@ -402,91 +425,83 @@ impl Attenuation {
     #[must_use]
     pub fn cull_radius(&self, threshold: f32) -> f32 {
         let t = threshold;
-        if t.is_nan() || t <= 0.0 {
+        if !(t > 0.0) {
             return f32::INFINITY;
         }
-        let r = match *self {
-            Attenuation::None => {
-                if t <= 1.0 {
-                    f32::INFINITY
-                } else {
-                    0.0
-                }
-            }
-            Attenuation::Polynomial {
-                constant,
-                linear,
-                quadratic,
-            } => {
-                // In f64: the root formula subtracts, and 1/t may be large.
-                let (c, l, q) = (constant as f64, linear as f64, quadratic as f64);
-                let k = 1.0 / t as f64 - c; // need l·d + q·d² > k
-                let r = if self.factor(0.0) < t {
-                    0.0
-                } else if l == 0.0 && q == 0.0 {
-                    f64::INFINITY
-                } else if k <= 0.0 {
-                    0.0
-                } else {
-                    // Stable root of q·d² + l·d − k = 0: d = 2k / (l + √(l² + 4qk)).
-                    2.0 * k / (l + math::sqrt_f64(l * l + 4.0 * q * k))
-                };
-                // Saturate a finite root at f32::MAX, but keep the documented +∞ ("never fades").
-                if r.is_infinite() {
-                    f32::INFINITY
-                } else {
-                    r.min(f32::MAX as f64) as f32
-                }
-            }
-            Attenuation::InverseSquare { power, .. } => {
-                if self.factor(0.0) < t {
-                    0.0
-                } else {
-                    (math::sqrt_f64(power as f64 / t as f64)).min(f32::MAX as f64) as f32
-                }
-            }
+        if !(self.factor(0.0) >= t) {
+            return 0.0;
+        }
+        if self.factor(f32::MAX) >= t {
+            return f32::INFINITY;
+        }
+        // factor(0) ≥ t > factor(f32::MAX): the bisection's invariant holds at both ends, and its
+        // result R has factor(R) ≥ t > factor(R.next_up()) whether or not factor is monotone.
+        let last = last_f32_where(f32::MAX, |d| self.factor(d) >= t);
+        match *self {
             Attenuation::Unreal { radius } | Attenuation::Frostbite { radius, .. } => {
-                self.bisect(t, radius)
+                last.max(self.windowed_crossing(t, radius))
             }
-        };
-        math::clamp_or_lo(r, 0.0, f32::INFINITY)
+            _ => last,
+        }
     }
 
-    /// Where a decreasing windowed factor crosses `t` on `[0, radius]`, found in `f64` so that
-    /// `f32` rounding of a flat factor does not move the root.
-    fn bisect(&self, t: f32, radius: f32) -> f32 {
-        if !(radius > 0.0) || self.factor(0.0) < t {
+    /// For the windowed forms: the largest `f32` below `radius` where the exact factor, in `f64`,
+    /// is at least `t·(1 − CULL_MARGIN) − 2⁻¹⁴⁹`; 0 if there is none, or if `radius` is not in
+    /// `(0, f32::MAX]`. Past it the `f32` factor is below `t` (see [`Attenuation::cull_radius`]).
+    fn windowed_crossing(&self, t: f32, radius: f32) -> f32 {
+        if !(radius > 0.0 && radius <= f32::MAX) {
             return 0.0;
         }
         let r = radius as f64;
-        let f64_factor = |d: f64| -> f64 {
+        // The exact formula with the same clamps as factor_other; the factored window has no
+        // cancellation near d = r, and every f64 intermediate lies in [2⁻²⁵², 2²⁵⁶].
+        let exact = |d: f64| -> f64 {
             match *self {
                 Attenuation::Unreal { .. } => window_f64(d, r) / (d * d + 1.0),
                 Attenuation::Frostbite { min_distance, .. } => {
-                    let dd = d.max(min_distance as f64).max(f64::MIN_POSITIVE);
+                    let dd = d.max(min_distance as f64).max(f32::MIN_POSITIVE as f64);
                     window_f64(d, r) / (dd * dd)
                 }
                 _ => 0.0,
             }
         };
-        let t = t as f64;
-        let (mut lo, mut hi) = (0.0f64, r);
-        // factor(lo) ≥ t, factor(hi) = 0 < t. 80 halvings exhaust f64's resolution on [0, r].
-        for _ in 0..80 {
-            let mid = lo + 0.5 * (hi - lo);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if f64_factor(mid) >= t {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        // Round up to f32 so that factor(d) < t holds past the returned radius.
-        let h = hi as f32;
-        if (h as f64) < hi { h.next_up() } else { h }
+        let target = t as f64 * (1.0 - CULL_MARGIN) - SUBNORMAL_ERROR;
+        last_f32_where(radius, |d| exact(d as f64) >= target)
     }
+}
+
+/// The relative error the windowed factors' `f32` evaluation may have, with room: 20 roundings of
+/// `2⁻²⁴` (17 in the squared window, 3 in `/(d² + 1)`, see [`window`]) and their second-order
+/// terms are below `21·2⁻²⁴`; `2⁻¹⁹ = 32·2⁻²⁴`, and the `f64` formula it is compared with is
+/// accurate to a few `2⁻⁵³`. So where the exact factor is below `t·(1 − 2⁻¹⁹)`, the `f32` one is
+/// below `t`.
+const CULL_MARGIN: f64 = 1.0 / (1u32 << 19) as f64;
+
+/// The absolute error the windowed factors' `f32` evaluation may add where results are subnormal:
+/// the final rounding (at most `2⁻¹⁵⁰`), and for Frostbite a subnormal first quotient `w/dd`
+/// (another `2⁻¹⁵⁰`, divided by `dd > 2⁷⁸`, since `w ≥ 2⁻⁴⁸` when it is not 0). `2⁻¹⁴⁹` bounds
+/// their sum.
+const SUBNORMAL_ERROR: f64 = f32::MIN_POSITIVE as f64 / (1u32 << 23) as f64;
+
+/// The largest `f32` `d` in `[0, hi)` with `pred(d)`, by bisection over the ordered bit patterns
+/// of the non-negative `f32`s (at most 31 steps for `hi ≤ f32::MAX`), assuming `pred(hi)` is
+/// false (it is never evaluated); 0 if `pred(0)` is false. The result `d` always has `pred(d)`
+/// and `!pred(d.next_up())` (or `d.next_up() = hi`); if `pred` is true on an initial segment of
+/// the distances and false after it, `d` is the segment's end.
+fn last_f32_where(hi: f32, pred: impl Fn(f32) -> bool) -> f32 {
+    if !pred(0.0) {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (0u32, hi.to_bits());
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if pred(f32::from_bits(mid)) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    f32::from_bits(lo)
 }
 
 /// Checks a radius or `ε`: finite and at least `f32::MIN_POSITIVE`, the interval its error names.

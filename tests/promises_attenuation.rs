@@ -10,6 +10,12 @@
 //!    valid form, radii and distances up to `f32::MAX` included (the window's `r + d` overflowed);
 //! 4. a polynomial with a coefficient near `f32::MAX` keeps its representable factor (its `f32`
 //!    denominator overflowed to `+∞`, giving 0);
+//! 5. `cull_radius` keeps its contract at every scale: `+∞` exactly when the light never fades
+//!    below the threshold, 0 when `factor(0)` is already below it, and otherwise safe
+//!    (`factor(d) < t` for every larger `d`) and tight (exactly for the polynomial and
+//!    inverse-square forms, to within the documented margin for the windowed ones). It failed in
+//!    both directions: too small (unsafe) at thresholds near `factor(0)`, and far too large for
+//!    huge radii, where bisecting `[0, r]` in halves cannot resolve a crossing near 100.
 
 use phong::{Attenuation, PhongError};
 use proptest::prelude::*;
@@ -97,7 +103,10 @@ proptest! {
                 Ok(_) => prop_assert!(inside, "{name} = {v:e} accepted"),
                 Err(PhongError::OutOfRange { field, min, max, .. }) => {
                     prop_assert_eq!(field, name);
-                    prop_assert!(!(min..=max).contains(&v), "{v:e} rejected but in [{min:e}, {max:e}]");
+                    prop_assert!(
+                        !(min..=max).contains(&v),
+                        "{v:e} rejected but in [{min:e}, {max:e}]"
+                    );
                     prop_assert!(v.is_finite() && v >= 0.0);
                 }
                 // NonFinite or Negative: only for values outside [0, ∞), so never for one inside.
@@ -156,7 +165,11 @@ proptest! {
     /// Any coefficients: a debug build panics exactly when `try_polynomial` rejects them; a
     /// release build keeps valid ones bit for bit and sanitises the others by the documented rule.
     #[test]
-    fn unchecked_polynomial_follows_the_crate_rule(c in any_bits(), l in any_bits(), q in any_bits()) {
+    fn unchecked_polynomial_follows_the_crate_rule(
+        c in any_bits(),
+        l in any_bits(),
+        q in any_bits(),
+    ) {
         let checked = Attenuation::try_polynomial(c, l, q);
         match unchecked_polynomial(c, l, q) {
             None => prop_assert!(cfg!(debug_assertions) && checked.is_err()),
@@ -188,6 +201,12 @@ const U: f64 = 1.0 / (1u64 << 24) as f64;
 /// `+∞` (a factor of 0) only for `d > 1.8e19`, where the exact factor is below `1/d² < 2⁻¹²⁸`.
 const TINY: f64 = f32::MIN_POSITIVE as f64;
 
+/// A uniform `f64` in `[lo, hi]` on a grid of `2²⁴` steps (built from an integer: proptest's own
+/// float ranges trip a debug assertion of theirs on rare draws).
+fn uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (0u32..=1 << 24).prop_map(move |k| lo + (hi - lo) * (k as f64 / (1u32 << 24) as f64))
+}
+
 /// A positive `f32` spread evenly over the bit patterns of `[lo, hi]`: every binade is as likely
 /// as every other, so `1e-30` and `1e30` come up as often as `1`.
 fn log_f32(lo: f32, hi: f32) -> impl Strategy<Value = f32> {
@@ -199,7 +218,7 @@ fn log_f32(lo: f32, hi: f32) -> impl Strategy<Value = f32> {
 fn coefficient() -> impl Strategy<Value = f32> {
     prop_oneof![
         2 => Just(0.0f32),
-        2 => 0.0f32..4.0,
+        2 => uniform(0.0, 4.0).prop_map(|x| x as f32),
         4 => log_f32(1e-45, f32::MAX),
         2 => log_f32(1e30, f32::MAX),
         1 => prop::sample::select(vec![1.0f32, f32::MAX, 3.4e38, 1e38, f32::MIN_POSITIVE, 1e-45]),
@@ -211,7 +230,7 @@ fn length() -> impl Strategy<Value = f32> {
     prop_oneof![
         4 => log_f32(f32::MIN_POSITIVE, f32::MAX),
         2 => log_f32(1e30, f32::MAX),
-        2 => 0.05f32..100.0,
+        2 => uniform(0.05, 100.0).prop_map(|x| x as f32),
         1 => prop::sample::select(vec![
             f32::MIN_POSITIVE,
             0.01,
@@ -229,8 +248,8 @@ fn length() -> impl Strategy<Value = f32> {
 fn valid_form() -> impl Strategy<Value = Attenuation> {
     prop_oneof![
         1 => Just(Attenuation::None),
-        3 => (coefficient(), coefficient(), coefficient()).prop_map(|(constant, linear, quadratic)| {
-            Attenuation::Polynomial { constant, linear, quadratic }
+        3 => (coefficient(), coefficient(), coefficient()).prop_map(|(c, l, q)| {
+            Attenuation::Polynomial { constant: c, linear: l, quadratic: q }
         }),
         2 => (coefficient(), prop_oneof![Just(0.01f32), length()])
             .prop_map(|(power, min_distance)| Attenuation::InverseSquare { power, min_distance }),
@@ -255,12 +274,23 @@ fn scale(a: &Attenuation) -> f32 {
 fn distance(s: f32) -> impl Strategy<Value = f32> {
     prop_oneof![
         3 => log_f32(1e-45, f32::MAX),
-        3 => (0.0f64..1.5).prop_map(move |k| (s as f64 * k).min(f32::MAX as f64) as f32),
+        3 => uniform(0.0, 1.5).prop_map(move |k| (s as f64 * k).min(f32::MAX as f64) as f32),
         2 => (1i32..40).prop_map(move |k| (s as f64 * (1.0 - 2f64.powi(-k))) as f32),
         1 => (0u32..64).prop_map(move |k| f32::from_bits(s.to_bits().saturating_sub(k))),
         1 => Just(s),
         1 => Just(0.0f32),
     ]
+}
+
+/// How the second distance of a pair is drawn.
+#[derive(Clone, Copy, Debug)]
+enum Second {
+    /// Independently of the first.
+    Anywhere(f32),
+    /// This many ulps above the first.
+    Ulps(u32),
+    /// The first times `1 + δ`.
+    Step(f64),
 }
 
 /// A valid form and two distances `d1 ≤ d2`: independent, or neighbours (one ulp, a few ulps, a
@@ -269,19 +299,15 @@ fn form_and_two_distances() -> impl Strategy<Value = (Attenuation, f32, f32)> {
     valid_form().prop_flat_map(|a| {
         let s = scale(&a);
         let second = prop_oneof![
-            distance(s).prop_map(Some),
-            (1u32..5).prop_map(|k| None.or(Some(-(k as f32)))),
-            (1e-7f64..1e-2).prop_map(|k| Some(-(1.0 + k as f32))),
+            distance(s).prop_map(Second::Anywhere),
+            (1u32..5).prop_map(Second::Ulps),
+            (-23i32..-7).prop_map(|k| Second::Step(2f64.powi(k))),
         ];
         (Just(a), distance(s), second).prop_map(|(a, d1, second)| {
-            // Negative markers ask for a neighbour of d1: -k for k ulps up, -(1 + δ) for d1·(1 + δ).
             let d2 = match second {
-                Some(v) if v >= 0.0 => v,
-                Some(v) if v > -1.0 || v.fract() == 0.0 && v >= -4.0 => {
-                    f32::from_bits((d1.to_bits() + (-v) as u32).min(f32::MAX.to_bits()))
-                }
-                Some(v) => ((d1 as f64) * (-v as f64)).min(f32::MAX as f64) as f32,
-                None => d1,
+                Second::Anywhere(d) => d,
+                Second::Ulps(k) => f32::from_bits((d1.to_bits() + k).min(f32::MAX.to_bits())),
+                Second::Step(k) => (d1 as f64 * (1.0 + k)).min(f32::MAX as f64) as f32,
             };
             (a, d1.min(d2), d1.max(d2))
         })
@@ -504,7 +530,8 @@ proptest! {
     ) {
         let f = a.factor(d);
         prop_assert!(f.is_finite() && f >= 0.0, "{a:?}.factor({d:e}) = {f:e}");
-        prop_assert!(f <= a.factor(0.0), "{a:?}.factor({d:e}) = {f:e} > factor(0) = {:e}", a.factor(0.0));
+        let f0 = a.factor(0.0);
+        prop_assert!(f <= f0, "{a:?}.factor({d:e}) = {f:e} > factor(0) = {f0:e}");
         let want = exact(&a, d);
         let err = (f as f64 - want).abs();
         prop_assert!(
@@ -517,8 +544,9 @@ proptest! {
     /// Non-increasing in `d`: exactly for the polynomial and inverse-square forms (every
     /// operation in their evaluation is monotone in `d`), and within rounding for the windowed
     /// ones. There each factor is within 21u of the exact, decreasing formula, plus at most
-    /// `2⁻¹⁴⁹` absolutely from underflow, so `factor(d2) ≤ factor(d1)·(1 + 21u)/(1 − 21u) + 2·2⁻¹⁴⁹`,
-    /// below the `factor(d1)·(1 + 2⁻¹⁸) + 2⁻¹⁴⁷` asserted (`2⁻¹⁸` = 64u).
+    /// `2⁻¹⁴⁹` absolutely from underflow, so
+    /// `factor(d2) ≤ factor(d1)·(1 + 21u)/(1 − 21u) + 2·2⁻¹⁴⁹`, below the
+    /// `factor(d1)·(1 + 2⁻¹⁸) + 2⁻¹⁴⁷` asserted (`2⁻¹⁸` = 64u).
     #[test]
     fn factor_is_non_increasing((a, d1, d2) in form_and_two_distances()) {
         let (f1, f2) = (a.factor(d1), a.factor(d2));
@@ -532,5 +560,209 @@ proptest! {
             f2 as f64 <= f1 as f64 + slack,
             "{a:?}: factor({d1:e}) = {f1:e} < factor({d2:e}) = {f2:e}"
         );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 5. cull_radius: never cull, zero, or safe and tight
+// ---------------------------------------------------------------------------------------------
+
+/// The windowed forms' documented margin: `cull_radius` is tight to `t·(1 − 2⁻¹⁹) − 2⁻¹⁴⁹`.
+fn windowed_floor(t: f32) -> f64 {
+    t as f64 * (1.0 - 2f64.powi(-19)) - 2f64.powi(-149)
+}
+
+fn is_windowed(a: &Attenuation) -> bool {
+    matches!(
+        a,
+        Attenuation::Unreal { .. } | Attenuation::Frostbite { .. }
+    )
+}
+
+/// Checks the documented contract of `a.cull_radius(t)` at the points that decide it, with the
+/// extra distances `more` (beyond the result) where the factor must also be below `t`.
+fn check_cull_radius(a: &Attenuation, t: f32, more: &[f64]) -> Result<f32, String> {
+    let r = a.cull_radius(t);
+    let what = format!("{a:?}.cull_radius({t:e}) = {r:e}");
+    let fail = |why: String| Err(format!("{what}: {why}"));
+    if r.is_nan() || r < 0.0 {
+        return fail("not in [0, +∞]".into());
+    }
+    // +∞ exactly for a non-positive or NaN threshold, or when the light never fades below t.
+    let never = t.is_nan() || t <= 0.0 || a.factor(f32::MAX) >= t;
+    if never != (r == f32::INFINITY) {
+        return fail(format!("factor(f32::MAX) = {:e}", a.factor(f32::MAX)));
+    }
+    if never {
+        return Ok(r);
+    }
+    if a.factor(0.0) < t && r != 0.0 {
+        return fail(format!("factor(0) = {:e} < t, want 0", a.factor(0.0)));
+    }
+    // Safe: below t everywhere past r. The next ulps (where an ulp's wiggle of the windowed
+    // product would show), a relative step, the given distances, and far out.
+    let mut ds: Vec<f32> = (1..=64).map(|k| f32::from_bits(r.to_bits() + k)).collect();
+    for k in [2f64.powi(-20), 1e-3, 1.0, 10.0, 1e10] {
+        ds.push((r as f64 * (1.0 + k)).min(f32::MAX as f64) as f32);
+    }
+    ds.extend(more.iter().map(|&d| d.min(f32::MAX as f64) as f32));
+    ds.push(f32::MAX);
+    for d in ds.into_iter().filter(|&d| d > r) {
+        if a.factor(d) >= t {
+            return fail(format!("unsafe: factor({d:e}) = {:e} ≥ t", a.factor(d)));
+        }
+    }
+    // Tight, where the factor reaches t at all.
+    if a.factor(0.0) >= t {
+        if is_windowed(a) {
+            let radius = match *a {
+                Attenuation::Unreal { radius } | Attenuation::Frostbite { radius, .. } => radius,
+                _ => unreachable!(),
+            };
+            if r > radius {
+                return fail(format!("beyond the radius {radius:e}"));
+            }
+            // The test's exact formula differs from the crate's f64 one by far less than 2⁻²⁷
+            // relatively (see `exact`); allow that much.
+            let floor = windowed_floor(t) * (1.0 - 2f64.powi(-27));
+            if exact(a, r) < floor {
+                return fail(format!(
+                    "not tight: exact factor {:e} < {floor:e}",
+                    exact(a, r)
+                ));
+            }
+        } else if a.factor(r) < t {
+            return fail(format!("not tight: factor(r) = {:e} < t", a.factor(r)));
+        }
+    }
+    Ok(r)
+}
+
+#[test]
+fn cull_radius_reproducers_are_safe_and_tight() {
+    // Unreal r = 1 at t = 1 gave 7.45e-9, yet the f32 factor is 1 ≥ t up to about 2.4e-4 (the
+    // window and d² + 1 round to 1 there).
+    let u = Attenuation::Unreal { radius: 1.0 };
+    let r = check_cull_radius(&u, 1.0, &[7.45e-9 * 1.001, 1e-4, 2e-4]).unwrap();
+    assert!(r > 1e-4, "{r:e}");
+    // Polynomial 1/(2 + d²) at t = 0.5 gave 0, yet factor(1e-5) = 0.5 = t. The f32 factor is
+    // monotone, so the answer is exact: the last f32 at which 2 + d² still rounds to 2.
+    let p = Attenuation::Polynomial {
+        constant: 2.0,
+        linear: 0.0,
+        quadratic: 1.0,
+    };
+    assert_eq!(p.factor(1e-5), 0.5);
+    let r = check_cull_radius(&p, 0.5, &[1e-5]).unwrap();
+    assert!(
+        p.factor(r) >= 0.5 && p.factor(r.next_up()) < 0.5 && r >= 1e-5,
+        "{r:e}"
+    );
+    // Frostbite r = 0.5 at t = 1e4 = factor(0) gave 0.0061136, yet the f32 factor stays 1e4 to
+    // 0.00616.
+    let f = Attenuation::Frostbite {
+        radius: 0.5,
+        min_distance: 0.01,
+    };
+    assert_eq!(f.factor(0.0), 1e4);
+    let r = check_cull_radius(&f, 1e4, &[0.006_113_6 * 1.000_01, 0.006_16]).unwrap();
+    assert!(r >= 0.006_16, "{r:e}");
+    // Huge radii: the factor crosses 1e-4 near d = 99.995 (Unreal: 1/(d² + 1) = 1e-4) and
+    // d = 100 (Frostbite: 1/d²), whatever the radius; bisecting [0, r] in 80 halvings gave
+    // 827,180 for r = 1e30, and radii near 1e37 were as loose.
+    for radius in [1e30f32, 1e37, 3e38, f32::MAX] {
+        for a in [
+            Attenuation::try_unreal(radius).unwrap(),
+            Attenuation::try_frostbite(radius).unwrap(),
+        ] {
+            let r = check_cull_radius(&a, 1e-4, &[101.0, 1e3, 827_180.0]).unwrap();
+            let want = if matches!(a, Attenuation::Unreal { .. }) {
+                9999f64.sqrt()
+            } else {
+                100.0
+            };
+            // Tight to the margin: where the factor ~ 1/d², 2⁻¹⁹ in t moves the root by 2⁻²⁰.
+            assert!((r as f64 / want - 1.0).abs() < 2e-6, "{a:?}: {r} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn cull_radius_is_infinite_exactly_when_the_light_never_fades_below_t() {
+    let inf = f32::INFINITY;
+    let c_only = Attenuation::Polynomial {
+        constant: 0.5,
+        linear: 0.0,
+        quadratic: 0.0,
+    };
+    // Tiny linear term: factor(f32::MAX) = 1/(1e-42·f32::MAX) ≈ 2.9e3, below factor(0) = 1e4.
+    let tiny_l = Attenuation::Polynomial {
+        constant: 0.0,
+        linear: 1e-42,
+        quadratic: 0.0,
+    };
+    // Huge power: factor(f32::MAX) = f32::MAX/f32::MAX/f32::MAX ≈ 2.9e-39.
+    let huge_p = Attenuation::InverseSquare {
+        power: f32::MAX,
+        min_distance: 0.01,
+    };
+    let cases = [
+        (Attenuation::None, 1.0, inf),
+        (Attenuation::None, 1.0f32.next_up(), 0.0),
+        (c_only, 2.0, inf),
+        (c_only, 2.0f32.next_up(), 0.0),
+        (tiny_l, 1e3, inf),
+        (huge_p, 1e-39, inf),
+        (Attenuation::try_unreal(3e38).unwrap(), 1e-45, 3e38),
+    ];
+    for (a, t, want) in cases {
+        let r = check_cull_radius(&a, t, &[]).unwrap();
+        if want == 3e38 {
+            // Even the smallest threshold is met only inside the radius.
+            assert!(r.is_finite() && r <= want, "{a:?} at {t:e}: {r:e}");
+        } else {
+            assert_eq!(r, want, "{a:?} at {t:e}");
+        }
+    }
+    for t in [f32::NAN, 0.0, -0.0, -1.0, f32::NEG_INFINITY] {
+        assert_eq!(Attenuation::try_unreal(1.0).unwrap().cull_radius(t), inf);
+    }
+    // And the light that fades: finite at every positive threshold.
+    let huge_p_finite = check_cull_radius(&huge_p, 1e-37, &[]).unwrap();
+    assert!(huge_p_finite.is_finite());
+}
+
+/// A threshold for `a`: anywhere, just at or around `factor(0)`, a fraction of it, the factor's
+/// own value at a distance (so the crossing is exactly at an `f32`), or tiny.
+fn threshold_for(a: Attenuation) -> impl Strategy<Value = f32> {
+    let f0 = a.factor(0.0);
+    prop_oneof![
+        2 => log_f32(1e-45, f32::MAX),
+        1 => Just(f0),
+        1 => Just(f0.next_up()),
+        1 => (0u32..4096).prop_map(move |k| f32::from_bits(f0.to_bits().saturating_sub(k))),
+        2 => uniform(0.0, 150.0).prop_map(move |k| (f0 as f64 * 2f64.powf(-k)) as f32),
+        3 => distance(scale(&a)).prop_map(move |d| a.factor(d)),
+        1 => prop::sample::select(vec![1e-45f32, f32::MIN_POSITIVE, 1e-30, 1e-4, 1.0]),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(5000))]
+
+    /// The contract for random valid forms (huge and tiny radii, huge coefficients) and
+    /// thresholds (at, above and far below `factor(0)`, and tiny), with safety also checked at
+    /// random distances in `(R, 2R]`.
+    #[test]
+    fn cull_radius_keeps_its_contract(
+        (a, t, ks) in valid_form().prop_flat_map(|a| {
+            (Just(a), threshold_for(a), prop::collection::vec(uniform(0.0, 1.0), 4))
+        }),
+    ) {
+        let r = a.cull_radius(t) as f64;
+        let more: Vec<f64> = ks.iter().map(|k| r * (1.0 + k)).collect();
+        if let Err(e) = check_cull_radius(&a, t, &more) {
+            prop_assert!(false, "{}", e);
+        }
     }
 }
