@@ -427,3 +427,68 @@ fn a_colour_product_past_max_is_not_folded() {
         Vec3::new(-0.8513977, 0.39934915, 0.3400623),
     );
 }
+
+/// Found by tests/fuzz_promises.rs: `Ls ⊙ Ks` overflows `f32` (`Ls = f32::MAX`, `Ks = 1.05`) while
+/// `Ls ⊙ Ks · k` (k = 1/π, the energy factor at s = 0) does not, so the folded product must not be
+/// formed in that order; with every specular weight 0 the lane was `f32::MAX` instead of ≈ 0.42.
+#[test]
+fn a_folded_product_does_not_overflow_in_its_first_factor() {
+    let dim = LightColors::try_new(Vec3::splat(0.06), Vec3::splat(0.9), Vec3::splat(0.7)).unwrap();
+    let hot =
+        LightColors::try_new(Vec3::ZERO, Vec3::splat(0.8), Vec3::new(f32::MAX, 1.0, 1.0)).unwrap();
+    let lights = [
+        DirectionalLight::try_new(-Vec3::X, dim).unwrap(),
+        DirectionalLight::try_new(Vec3::new(0.4443581, -0.15425405, -0.88246906), hot).unwrap(),
+    ];
+    let material = Material::try_new(
+        Vec3::splat(0.6),
+        Vec3::splat(0.9),
+        Vec3::new(1.0549212, 1.0, 1.0),
+        0.0,
+    )
+    .unwrap();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(8.650287e-5, -0.00014428791, 7.4741956e-6)),
+    };
+    let model = Phong {
+        gate: SpecularGate::None,
+        normalization: Normalization::EnergyExact,
+        pow: PowStrategy::SplitPoly5,
+    };
+    assert_batch_in_range(
+        model.into(),
+        &material,
+        &scene,
+        Vec3::new(-5.2654867, 3.705335, 0.5617167),
+        Vec3::new(0.062991224, 0.9971614, 0.041246988),
+    );
+}
+
+/// Found by tests/fuzz_promises.rs once `Attenuation::factor` evaluated an overflowing polynomial
+/// denominator in `f64`: the kernels' `f32` denominator overflowed to +∞ and gave 0 where `shade`
+/// gives the small true factor. Such lanes now go to the scalar path.
+#[test]
+fn an_overflowing_polynomial_denominator_matches_shade() {
+    let lamp = PointLight::try_new(
+        Vec3::ZERO,
+        Attenuation::try_polynomial(0.0, 3.4e38, 1e38).unwrap(),
+        LightColors::try_new(Vec3::ZERO, Vec3::splat(3e38), Vec3::ZERO).unwrap(),
+    )
+    .unwrap();
+    let lights = [lamp];
+    let material = Material::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO, 1.0).unwrap();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::Z),
+    };
+    let p = Vec3::new(0.0, 0.0, -0.01);
+    let want = phong::shade(&Lambert::default(), &material, &scene, p, Vec3::Z).total();
+    assert!(
+        want.y > 0.0,
+        "the true factor is 2.9e-37, times 3e38: {want}"
+    );
+    assert_batch_in_range(Lambert::default().into(), &material, &scene, p, Vec3::Z);
+}

@@ -435,6 +435,8 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8, const FOLD
                         let inv = rsqrt(ll);
                         let dist = _mm512_mul_ps(ll, inv);
                         let den = _mm512_fmadd_ps(dist, _mm512_fmadd_ps(c2, dist, c1), c0);
+                        // An overflowed denominator is `Attenuation::factor`'s f64 case: scalar.
+                        ok &= _mm512_cmp_ps_mask::<_CMP_LT_OQ>(den, splat(f32::INFINITY));
                         let att = _mm512_div_ps(
                             splat(1.0),
                             _mm512_max_ps(den, splat(Attenuation::MIN_DENOMINATOR)),

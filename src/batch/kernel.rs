@@ -93,14 +93,21 @@ pub(crate) fn prepare_light<L: BatchLight>(
 ) -> PreparedLight {
     let colors = light.colors();
     let ld = colors.diffuse() * lm.diffuse_scale;
+    // The folded products, formed in f64 and rounded once: `Ls ⊙ Ks · scale` in f32 could
+    // overflow in its first product although the whole is finite (`cannot_overflow` checks the
+    // whole). Unfolded calls never read them.
+    let product = |a: Vec3, b: Vec3, k: f32| {
+        let c = |x: f32, y: f32| (f64::from(x) * f64::from(y) * f64::from(k)) as f32;
+        Vec3::new(c(a.x, b.x), c(a.y, b.y), c(a.z, b.z))
+    };
     PreparedLight {
         lane: light.lane_light().unwrap_or(LaneLight::AmbientOnly),
         la: colors.ambient(),
         ld,
         ls: colors.specular(),
-        ka: colors.ambient() * material.ambient(),
-        kd: ld * material.diffuse(),
-        ks: colors.specular() * material.specular() * lm.specular_scale,
+        ka: product(colors.ambient(), material.ambient(), 1.0),
+        kd: product(ld, material.diffuse(), 1.0),
+        ks: product(colors.specular(), material.specular(), lm.specular_scale),
     }
 }
 
@@ -414,9 +421,11 @@ where
                 });
                 let inv = rsqrt(ll);
                 let d = lanes!(|i| ll[i] * inv[i]);
-                let att = lanes!(
-                    |i| 1.0 / (c0 + d[i] * (c1 + c2 * d[i])).max(Attenuation::MIN_DENOMINATOR)
-                );
+                let den = lanes!(|i| c0 + d[i] * (c1 + c2 * d[i]));
+                // A denominator past f32::MAX (coefficients near it) is evaluated in f64 by
+                // `Attenuation::factor`: such lanes go to the scalar path.
+                bad = lanes!(|i| if den[i] < f32::INFINITY { bad[i] } else { 1.0 });
+                let att = lanes!(|i| 1.0 / den[i].max(Attenuation::MIN_DENOMINATOR));
                 (
                     lanes!(|i| dx[i] * inv[i]),
                     lanes!(|i| dy[i] * inv[i]),
