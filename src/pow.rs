@@ -102,7 +102,6 @@ use crate::math;
 pub enum PowStrategy {
     /// `powf` from `std` or `libm`: correctly rounded to within 1 ulp, but a scalar call that
     /// blocks vectorisation.
-    #[default]
     Exact,
     /// Repeated squaring when `s` is a whole number in `[0, 1024]` (e.g. `x³² = x` squared 5
     /// times). Each squaring doubles the relative error carried so far, so the result is within
@@ -124,9 +123,15 @@ pub enum PowStrategy {
     /// `x^⌊s⌋` by repeated squaring times `x^{s−⌊s⌋}` by [`Poly5`](Self::Poly5). For `s > 1024`
     /// the whole power by [`Poly7`](Self::Poly7).
     SplitPoly5,
-    /// [`PowStrategy::cheapest_for_8bit`] of the exponent, chosen per call: the error is the
-    /// chosen strategy's. (Resolving it to `powf` in scalar code was tried: fewer instructions,
-    /// but slower in the criterion benches, 5% for Phong.)
+    /// The default: the cheapest strategy that keeps 8-bit sRGB output as exact as `powf`, chosen
+    /// per exponent. In the batch kernels that is [`PowStrategy::cheapest_for_8bit`] (squaring for
+    /// a whole exponent, [`Poly7`](Self::Poly7) otherwise); point by point ([`Shader`] and
+    /// [`shade`]) it is squaring for a whole exponent and `powf` otherwise, since there a single
+    /// `powf` costs less than the degree-7 polynomials. The error is the chosen strategy's.
+    ///
+    /// [`Shader`]: crate::Shader
+    /// [`shade`]: crate::shade()
+    #[default]
     Auto,
 }
 

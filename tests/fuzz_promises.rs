@@ -476,6 +476,16 @@ fn attenuation(r: &mut Rng, c: &mut Check) {
     c.expect("Attenuation::cull_radius", radius >= 0.0, || {
         format!("{a:?}.cull_radius({t}) = {radius}")
     });
+    // Safe: past the radius the factor is below the threshold (checked just past it and at a
+    // random farther distance).
+    if radius.is_finite() && t > 0.0 {
+        let just_past = radius.next_up();
+        let farther = (radius as f64 * (1.0 + r.unit_f32() as f64 * 4.0) + 1e-30) as f32;
+        let (f1, f2) = (a.factor(just_past), a.factor(farther.max(just_past)));
+        c.expect("Attenuation::cull_radius", f1 < t && f2 < t, || {
+            format!("{a:?}.cull_radius({t}) = {radius}, but factor({just_past}) = {f1}, factor({farther}) = {f2}")
+        });
+    }
 }
 
 fn lobes(r: &mut Rng, c: &mut Check) {
@@ -852,7 +862,7 @@ fn env_u64(name: &str, default: u64) -> u64 {
 #[test]
 fn every_public_function_keeps_its_promises_on_adversarial_input() {
     // CI's default: a few seconds at the test profile's opt-level.
-    let evals = env_u64("PHONG_FUZZ_EVALS", 2_000_000);
+    let evals = env_u64("PHONG_FUZZ_EVALS", 5_000_000);
     let threads = env_u64(
         "PHONG_FUZZ_THREADS",
         std::thread::available_parallelism().map_or(1, |n| n.get() as u64),
