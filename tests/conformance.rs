@@ -1,10 +1,11 @@
 //! Conformance with a real GLSL implementation: Mesa 22.3.6 (llvmpipe) running LearnOpenGL's
-//! basic-lighting Phong shader and the GLSL built-ins, read back as f32 (tests/data/*.jsonl, copied
-//! from the shared conformance set; its README gives the schema and the measured precision).
+//! basic-lighting Phong shader and the GLSL built-ins, read back as f32 (tests/data/*.jsonl: one
+//! JSON object per case, with its `id`, `kind`, `label`, its inputs and Mesa's outputs).
 //!
-//! **Tolerance.** The README measures Mesa against a careful f32 evaluation: outputs through `pow`
-//! agree to about 2.5e-5 relative (Mesa's `pow` is not correctly rounded), everything else to about
-//! 1e-6 relative. The crate is itself a careful f32 evaluation, but not in Mesa's order (glam's dot
+//! **Tolerance.** Measured against a careful f32 evaluation when the vectors were recorded, Mesa's
+//! outputs through `pow` agree to about 2.5e-5 relative (Mesa's `pow` is not correctly rounded; the
+//! `pow_max` vectors here are within 2.1e-5 of the exact `x^e` of their f32 inputs), everything
+//! else to about 1e-6 relative. The crate is itself a careful f32 evaluation, but not in Mesa's order (glam's dot
 //! product adds x and y first, Mesa y and z; the crate gets R·V from the cosines as
 //! 2(N·L)(N·V) − L·V instead of building R), so each side carries a few ulps of its own. Hence:
 //!
@@ -315,7 +316,7 @@ fn documented_answer(
 #[test]
 fn learnopengl_phong_shader_matches_mesa() {
     let cases = load("glsl_learnopengl_phong.jsonl");
-    assert_eq!(cases.len(), 2351, "the README's case count");
+    assert_eq!(cases.len(), 2351, "the recorded case count");
     let by_label: BTreeMap<String, &Value> = cases
         .iter()
         .filter(|c| c["kind"] == "edge")
@@ -406,7 +407,7 @@ fn learnopengl_phong_shader_matches_mesa() {
 
 fn primitives(op: &str) -> Vec<Value> {
     let all = load("glsl_primitives.jsonl");
-    assert_eq!(all.len(), 14086, "the README's case count");
+    assert_eq!(all.len(), 14086, "the recorded case count");
     all.into_iter().filter(|c| c["op"] == op).collect()
 }
 
@@ -595,7 +596,7 @@ const POW_SUBNORMAL_FLUSH: [u64; 28] = [
 #[test]
 fn pow_max_matches_glsl() {
     // pow(max(x, 0), e) = PowStrategy::Exact.lobe(x, e) on the lobe's domain x ≤ 1. Mesa's pow is
-    // within ~2.5e-5 relative (README), so REL_POW = 1e-4 relative, with no absolute floor: the
+    // within ~2.5e-5 relative (module docs), so REL_POW = 1e-4 relative, with no absolute floor: the
     // values range down to 1e-38, and the subnormal flushes are listed instead.
     //
     // x > 1 is outside the lobe's domain (a clamped cosine is ≤ 1); the crate documents the result
