@@ -148,6 +148,13 @@ fn accuracy_md() -> String {
 
     o.push_str("## Attenuation and spot lights\n\n");
     table(&mut o, &find(&["Attenuation::", "SpotLight::"]));
+    o.push_str(
+        "`SpotLight::spot_factor` decides its cone test on the `f32` cosine `−L·axis`, which is \
+         within about 3·2⁻²⁴ of the exact one. Within 2⁻²² of the edge `cos cutoff` the factor \
+         may therefore land on either side, a step between 0 and `(cos cutoff)^e` (up to 1 for a \
+         small exponent): the rows accept either answer there and measure the error of the one \
+         given. Farther from the edge the decision must be the exact one.\n\n",
+    );
 
     o.push_str("## Lobes\n\n");
     o.push_str(

@@ -1,4 +1,6 @@
-//! The gallery: every picture the notes use to explain the Phong family, drawn by this crate.
+//! The gallery: the pictures LearnOpenGL's lighting chapters (Basic Lighting, Lighting Maps, Light
+//! Casters, Advanced Lighting, Gamma Correction) use to explain the Phong family, and a few more,
+//! drawn by this crate.
 //!
 //! ```text
 //! cargo run --release --example gallery [-- --model phong|blinn --shininess 32 --light x,y,z
@@ -23,7 +25,7 @@ use raster::{
     draw,
 };
 
-/// The command line, in the spirit of the notes' sliders.
+/// The command line: the model, shininess and light a lighting demo would put on sliders.
 #[derive(Clone)]
 struct Options {
     model: Model,
@@ -303,7 +305,8 @@ fn terms(opts: &Options, g: &mut Gallery) {
     g.end_row();
 }
 
-/// The notes' plane: a point light above a floor at y = −0.5, seen from the front and above.
+/// LearnOpenGL's "Advanced Lighting" floor: a point light above a floor at y = −0.5, seen from
+/// the front and above.
 fn floor_scene() -> (Camera, Light) {
     let camera = Camera::look_at(Vec3::new(0.0, 1.2, 4.0), Vec3::new(0.0, -0.5, 0.0));
     let light = PointLight::try_new(
@@ -821,7 +824,8 @@ fn gate(opts: &Options, g: &mut Gallery) {
 }
 
 fn cube(opts: &Options, g: &mut Gallery) {
-    // The notes' scene: a coral cube, a white point light near it, strengths 0.1 / 1.0 / 0.5.
+    // LearnOpenGL's "Basic Lighting" scene: a coral cube, a white point light near it, strengths
+    // 0.1 / 1.0 / 0.5.
     let camera = Camera::look_at(Vec3::new(-0.9, 1.1, 2.8), Vec3::ZERO);
     let light = PointLight::try_new(
         Vec3::new(1.2, 1.0, 2.0),

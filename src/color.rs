@@ -1,8 +1,8 @@
 //! Output encoding: linear ↔ sRGB, gamma, clamping and 8-bit quantisation.
 //!
 //! Shading happens in linear light; displays expect sRGB-encoded values. Writing linear values
-//! straight into an 8-bit image makes everything too dark and the highlights too hard (one of the
-//! notes shows the effect of gamma correction on Blinn-Phong).
+//! straight into an 8-bit image makes everything too dark and the highlights too hard (LearnOpenGL's
+//! "Gamma Correction" chapter shows the effect on a Blinn-Phong scene).
 
 use glam::Vec3;
 

@@ -19,7 +19,7 @@ pub enum SpecularGate {
     Step,
     /// Specular is scaled by `max(N·L, 0)`: it fades in at the terminator instead of switching on.
     Cosine,
-    /// No gate: reproduces LearnOpenGL and the notes' GLSL, halo included.
+    /// No gate: reproduces LearnOpenGL's lighting shaders, halo included.
     None,
 }
 

@@ -12,7 +12,7 @@ use crate::normalize_or_zero;
 ///
 /// **Domain:** `L` (to the light) and `V` (to the viewer) unit, pointing away from the surface.
 /// `H` bisects them: `H·L = H·V`. In the plane of `N`, `L` and `V`, the angle between `N` and `H` is
-/// half the angle between `R` and `V` (see docs/derivations.md).
+/// half the angle between `R` and `V`.
 ///
 /// Derivation of the bisection and half-angle properties:
 /// docs/derivations.md, section "The halfway vector".

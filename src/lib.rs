@@ -65,10 +65,19 @@
 //!
 //! ## Features
 //!
-//! - `std` (default): float functions from the platform's libm through `std`.
-//! - `libm`: pure-Rust float functions for `no_std` targets. With both on, `std` wins.
+//! - `std` (default): float functions from the platform's libm through `std`; the batch API picks
+//!   its SIMD level at run time.
+//! - `libm`: pure-Rust float functions for `no_std` targets (the batch API's SIMD level is then the
+//!   build's target features). With both on, `std` wins.
+//! - `serde`: `Serialize`/`Deserialize` for every parameter type (lights, attenuation forms,
+//!   materials, models, gates, normalisations, pow strategies, viewers) and the shaded [`Terms`].
+//!   Deserialising validates exactly like the `try_*` constructors, so a bad file is an error
+//!   naming the field, never an invalid value.
+//! - `mint`: glam's conversions between its vectors and matrices and the `mint` types. Another
+//!   math crate's vector does not convert with one `.into()` (Rust does not chain its `Into<mint>`
+//!   and glam's `From<mint>`); the README's `mint` section gives the shortest conversion per crate.
 //!
-//! One of the two is required. Derivations of every formula are in `docs/derivations.md`;
+//! One of `std` and `libm` is required. Derivations of every formula are in `docs/derivations.md`;
 //! measured accuracy in `docs/accuracy.md`.
 
 #![cfg_attr(not(feature = "std"), no_std)]

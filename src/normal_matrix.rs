@@ -34,7 +34,7 @@ use crate::normalize_or_zero;
 /// matrix times a power of two chosen to bring its largest entry near 1: the same normal
 /// directions, always finite.
 ///
-/// Derivation: docs/derivations.md, "The normal matrix".
+/// Derivation: docs/derivations.md, section "The normal matrix".
 ///
 /// ```
 /// use glam::{Mat3, Vec3};

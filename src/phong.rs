@@ -19,7 +19,8 @@ use crate::pow::PowStrategy;
 /// negative base or a lobe above 1; `0^0` is 0 (see [`PowStrategy`]). A missing `N`, `L` or `V`
 /// (the zero vector in [`Incidence::new`]) makes `R·V` 0 and so the lobe 0, and a missing `N` or `L`
 /// the diffuse lobe 0 as well. For `s < 1` the lobe is
-/// cut off sharply where `R·V` reaches 0 (the "Phong cut-off" of the notes): that is the model,
+/// cut off sharply where `R·V` reaches 0 (the edge LearnOpenGL's "Advanced Lighting" chapter shows
+/// at shininess 1): that is the model,
 /// not a bug; [`BlinnPhong`](crate::BlinnPhong) has no such edge.
 ///
 /// ```

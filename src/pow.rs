@@ -297,7 +297,8 @@ impl PowStrategy {
     }
 
     /// The per-call plan of this strategy for exponent `s` (`s` finite, `≥ 0`). `Auto` is
-    /// resolved here.
+    /// resolved here: its plan is the plan of the concrete strategy
+    /// [`cheapest_for_8bit`](Self::cheapest_for_8bit) picks, which is never `Auto`.
     #[inline]
     pub(crate) fn plan(self, s: f32) -> PowPlan {
         let s = math::clamp_or_lo(s, 0.0, math::MAX);
@@ -320,7 +321,7 @@ impl PowStrategy {
                 PowPlan::Poly { s, poly }
             }
         };
-        match self.resolve(s) {
+        match self {
             PowStrategy::Exact => PowPlan::Exact { s },
             PowStrategy::Squaring if whole => PowPlan::Squaring { n: s as u32 },
             PowStrategy::Squaring => PowPlan::Exact { s },
@@ -328,7 +329,8 @@ impl PowStrategy {
             PowStrategy::Poly5 => PowPlan::Poly { s, poly: Poly::P5 },
             PowStrategy::Poly7 => PowPlan::Poly { s, poly: Poly::P7 },
             PowStrategy::SplitPoly3 => split(Poly::P3),
-            PowStrategy::SplitPoly5 | PowStrategy::Auto => split(Poly::P5),
+            PowStrategy::SplitPoly5 => split(Poly::P5),
+            PowStrategy::Auto => Self::cheapest_for_8bit(s).plan(s),
         }
     }
 }
@@ -648,6 +650,24 @@ pub(crate) mod error_bounds {
             !failed,
             "a strategy exceeds its documented bound:\n{report}"
         );
+    }
+
+    #[test]
+    fn auto_plans_what_cheapest_for_8bit_documents() {
+        // `Auto` has no plan of its own: squaring for a whole exponent up to 1024, the degree-7
+        // polynomial otherwise, NaN and negative exponents read as 0.
+        for s in exponents().chain([-1.0, f32::NAN, -0.0, 2.0, 10.25]) {
+            let c = math::clamp_or_lo(s, 0.0, math::MAX);
+            let want = if c <= MAX_SQUARING && c == (c as u32) as f32 {
+                PowPlan::Squaring { n: c as u32 }
+            } else {
+                PowPlan::Poly {
+                    s: c,
+                    poly: Poly::P7,
+                }
+            };
+            assert_eq!(PowStrategy::Auto.plan(s), want, "s = {s}");
+        }
     }
 
     #[test]

@@ -27,7 +27,8 @@ use glam::Vec3;
 /// **Degenerate input:** a zero `L` gives the zero vector. A non-unit `N` gives `L` reflected and
 /// scaled wrongly; use [`normalize_or_zero`](crate::normalize_or_zero) first. A zero `N` gives `−L`.
 ///
-/// Derivation (projection and Householder forms): docs/derivations.md, "The reflect vector".
+/// Derivation (projection and Householder forms): docs/derivations.md, section "The reflect
+/// vector".
 ///
 /// ```
 /// use glam::Vec3;

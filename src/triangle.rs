@@ -9,7 +9,7 @@
 //! expansion arithmetic (Shewchuk 1997) the rest, so the result is exact for every finite input:
 //! the exact area vector of the given `f32` vertices, rounded once. docs/accuracy.md has the
 //! measured error against the naive form on an adversarial sliver set; the derivation is in
-//! docs/derivations.md, "Triangle normal and area".
+//! docs/derivations.md, section "Triangle normal and area".
 
 use glam::Vec3;
 

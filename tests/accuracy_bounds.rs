@@ -129,8 +129,11 @@ const BOUNDS: &[Bound] = &[
         "face_forward",
         "V within",
         Abs,
-        2.0,
-        "a flip (error 2) only where f32 rounds Nref·V across 0; it is a sign decision",
+        0.0,
+        "measured 0: face_forward returns exactly N or −N, on the exact sign of Nref·V, so any \
+         error is a flip (2); an f32 dot product flips 179 of the first 3000 samples here. The \
+         f64 reference's sign is exact except within 2⁻⁵² of the tie (relative to Σ|Nref_i·V_i|), \
+         far inside the 1e-9 rad the samples keep from it before V is rounded to f32",
     ),
     Bound(
         "normal_matrix",
@@ -285,12 +288,25 @@ const BOUNDS: &[Bound] = &[
         64.0,
         "measured 30.8 ulp: the cosine's rounding raised to the exponent",
     ),
+    // The adversarial spot row has two bounds: Rel catches a point inside the cone left dark
+    // (relative error 1), Abs a point outside it lit (error (cos cutoff)^e, up to 1).
+    Bound(
+        "SpotLight::spot_factor",
+        "exponent in",
+        Rel,
+        2.4e-3,
+        "measured 6.71e-4. Within 2⁻²² of the edge either side counts (measure::SPOT_EDGE_BAND: \
+         the f32 cosine's own error); elsewhere that error δ becomes e·δ/c relative in c^e, at \
+         most 1e4·2⁻²²/cos(0.05) = 2.39e-3 (plus powf's ulp), as a base below 0.993 with e = 1e4 \
+         falls under the 1e-30 floor",
+    ),
     Bound(
         "SpotLight::spot_factor",
         "exponent in",
         Abs,
-        1.0,
-        "the cone's hard edge: within rounding of it the factor steps between (cos cutoff)^e and 0",
+        2.4e-3,
+        "measured 2.10e-5. The same band; elsewhere δ ≤ 2⁻²² moves c^e by e·c^(e−1)·δ ≤ e·δ ≤ \
+         1e4·2⁻²² = 2.4e-3 for e ≥ 1 (for e < 1, c ≥ cos 1.5 bounds it by δ/0.07 = 3.4e-6)",
     ),
     // Lobes, ordinary: abs error from the f32 cosines (about 1e-7) times s.
     Bound(
@@ -672,10 +688,15 @@ fn every_row_stays_within_its_bound() {
     let rows = measure::rows(N);
     let mut failures = Vec::new();
     for r in rows.iter().filter(|r| !r.function.starts_with("naive")) {
-        let b = BOUNDS
+        let bounds: Vec<&Bound> = BOUNDS
             .iter()
-            .find(|b| b.0 == r.function && r.domain.starts_with(b.1))
-            .unwrap_or_else(|| panic!("no bound for row `{}`: add one to BOUNDS", r.key()));
+            .filter(|b| b.0 == r.function && r.domain.starts_with(b.1))
+            .collect();
+        assert!(
+            !bounds.is_empty(),
+            "no bound for row `{}`: add one to BOUNDS",
+            r.key()
+        );
         assert!(r.stats.n > 0, "row `{}` measured nothing", r.key());
         assert_eq!(
             r.stats.non_finite,
@@ -684,16 +705,18 @@ fn every_row_stays_within_its_bound() {
             r.key(),
             r.stats.worst
         );
-        let v = value(&r.stats, b.2);
-        if v > b.3 {
-            failures.push(format!(
-                "{}: {:?} {v:e} > bound {:e} ({}); worst input {}",
-                r.key(),
-                b.2,
-                b.3,
-                b.4,
-                r.stats.worst
-            ));
+        for b in bounds {
+            let v = value(&r.stats, b.2);
+            if v > b.3 {
+                failures.push(format!(
+                    "{}: {:?} {v:e} > bound {:e} ({}); worst input {}",
+                    r.key(),
+                    b.2,
+                    b.3,
+                    b.4,
+                    r.stats.worst
+                ));
+            }
         }
     }
     assert!(

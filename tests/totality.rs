@@ -9,8 +9,8 @@
 use glam::{Mat3, Vec3};
 use phong::{
     Attenuation, BlinnPhong, DirectionalLight, Incidence, Lambert, Light, LightColors, LightSource,
-    Material, Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel, Scene,
-    SpecularGate, SpotLight, Viewer,
+    Material, Model, Normalization, Phong, PhongError, PointLight, PowStrategy, ReflectionModel,
+    Scene, SpecularGate, SpotLight, Viewer,
 };
 use proptest::prelude::*;
 
@@ -463,11 +463,10 @@ proptest! {
 
     #[test]
     fn colour_functions_are_total(x in finite(), gamma in finite(), c in finite_vec3()) {
-        // KNOWN ISSUE (reported, see `srgb_encode_of_huge_negatives` below): the linear segment
-        // 12.92·x overflows to −∞ for x < −f32::MAX/12.92, so that range is left out here.
-        let xe = x.max(-f32::MAX / 12.92);
+        // The whole finite range, `finite()`'s ±f32::MAX and ±3e38 included: below
+        // −f32::MAX/12.92 the linear segment 12.92·x would overflow, and `srgb_encode` saturates.
         for (name, y) in [
-            ("srgb_encode", phong::srgb_encode(xe)),
+            ("srgb_encode", phong::srgb_encode(x)),
             ("srgb_decode", phong::srgb_decode(x)),
             ("gamma_encode", phong::gamma_encode(x, gamma)),
             ("gamma_decode", phong::gamma_decode(x, gamma)),
@@ -489,10 +488,12 @@ proptest! {
 
 #[test]
 fn srgb_encode_of_huge_negatives() {
-    // The doc promises any finite x is accepted (negatives follow the linear segment) and the
-    // crate promises no infinity from finite input; 12.92·x overflows here.
-    let y = phong::srgb_encode(-f32::MAX);
-    assert!(y.is_finite(), "srgb_encode(-f32::MAX) = {y}");
+    // The doc promises any finite x is accepted (negatives follow the linear segment, saturated
+    // at −f32::MAX) and the crate promises no infinity from finite input, although 12.92·x
+    // overflows for x < −f32::MAX/12.92 ≈ −2.6e37.
+    for x in [-f32::MAX, -3e38, -f32::MAX / 12.0] {
+        assert_eq!(phong::srgb_encode(x), -f32::MAX, "srgb_encode({x})");
+    }
 }
 
 proptest! {
@@ -523,7 +524,12 @@ proptest! {
     }
 
     #[test]
-    fn checked_constructors_report_errors_that_display(x in finite(), v in finite_vec3()) {
+    fn checked_constructors_report_errors_that_name_field_and_value(x in finite(), v in finite_vec3()) {
+        // PhongError's promise: the message names the field and shows the offending value as it
+        // is. Checked structurally here over random values: the message starts with the field,
+        // and the number after "got " parses back to the carried value bit for bit (f32's
+        // Display prints the shortest decimal that round-trips). The exact wording of every
+        // variant is pinned by `phong_error_messages_are_exact` below.
         let errs = [
             Attenuation::try_polynomial(x, -1.0, 0.0).err(),
             Attenuation::try_unreal(-x.abs()).err(),
@@ -534,7 +540,79 @@ proptest! {
         ];
         for e in errs.into_iter().flatten() {
             let msg = e.to_string();
-            prop_assert!(!msg.is_empty(), "{e:?}");
+            let (field, value) = match e {
+                PhongError::NonFinite { field, value }
+                | PhongError::Negative { field, value }
+                | PhongError::OutOfRange { field, value, .. } => (field, Some(value)),
+                PhongError::ZeroDirection { field } => (field, None),
+                _ => unreachable!("a variant this test does not know: {e:?}"),
+            };
+            prop_assert!(msg.starts_with(field) && msg.len() > field.len(), "{msg:?} does not start with {field:?}");
+            if let Some(value) = value {
+                let shown = msg.rsplit_once("got ").map(|(_, t)| t);
+                let back = shown.and_then(|t| t.parse::<f32>().ok());
+                prop_assert!(
+                    back.is_some_and(|b| b.to_bits() == value.to_bits() || (b.is_nan() && value.is_nan())),
+                    "{msg:?} does not show {value:?}"
+                );
+            }
         }
     }
+}
+
+#[test]
+fn phong_error_messages_are_exact() {
+    // One error of each variant, from the checked constructor that reports it, with its exact
+    // message: a user may show these as they are, so a change of wording is a change of API.
+    let v = Vec3::ONE;
+    let cases: [(Result<(), PhongError>, PhongError, &str); 4] = [
+        (
+            LightColors::try_new(v, Vec3::new(0.0, f32::INFINITY, 0.0), v).map(drop),
+            PhongError::NonFinite {
+                field: "light.diffuse.y",
+                value: f32::INFINITY,
+            },
+            "light.diffuse.y must be finite, got inf",
+        ),
+        (
+            Material::try_new(v, v, v, -2.5).map(drop),
+            PhongError::Negative {
+                field: "material.shininess",
+                value: -2.5,
+            },
+            "material.shininess must be non-negative, got -2.5",
+        ),
+        (
+            DirectionalLight::try_new(Vec3::ZERO, LightColors::BLACK).map(drop),
+            PhongError::ZeroDirection {
+                field: "light.direction",
+            },
+            "light.direction must be a non-zero direction",
+        ),
+        (
+            SpotLight::try_new(
+                Vec3::ZERO,
+                Vec3::Z,
+                2.0,
+                1.0,
+                Attenuation::None,
+                LightColors::BLACK,
+            )
+            .map(drop),
+            PhongError::OutOfRange {
+                field: "light.cutoff",
+                value: 2.0,
+                min: 0.0,
+                max: core::f32::consts::FRAC_PI_2,
+            },
+            "light.cutoff must lie in [0, 1.5707964], got 2",
+        ),
+    ];
+    for (got, want, message) in cases {
+        assert_eq!(got, Err(want));
+        assert_eq!(want.to_string(), message, "{want:?}");
+    }
+    // NaN, the other non-finite value, prints as NaN.
+    let nan = LightColors::try_new(Vec3::new(f32::NAN, 0.0, 0.0), v, v).unwrap_err();
+    assert_eq!(nan.to_string(), "light.ambient.x must be finite, got NaN");
 }

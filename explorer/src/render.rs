@@ -11,7 +11,7 @@ use phong::{
 };
 use raster::{Camera, DrawStats, Framebuffer, Image, Mesh, PhongShader, ShadingMode};
 
-/// The object colour of the notes' lit cube (coral), linear RGB.
+/// The object colour of LearnOpenGL's lit cube ("Basic Lighting": coral), linear RGB.
 pub const OBJECT_COLOR: Vec3 = Vec3::new(1.0, 0.5, 0.31);
 /// Where the eye is; it looks at the origin.
 pub const EYE: Vec3 = Vec3::new(0.0, 0.0, 3.6);
@@ -43,7 +43,7 @@ pub enum Encoding {
 pub enum Shape {
     /// An icosphere of radius 1 (low-poly at small subdivision counts).
     Sphere,
-    /// The notes' cube: flat faces of two triangles each.
+    /// LearnOpenGL's lit cube: flat faces of two triangles each.
     Cube,
 }
 

@@ -70,7 +70,7 @@ fn snapshots_of_fixed_states() {
     let mut results = SnapshotResults::new();
     // The start-up state: Phong, adaptive shading on a low-poly sphere, sRGB.
     snapshot(&mut results, "default", base());
-    // The notes' lit cube, per vertex: the faces' two triangles miss the highlight.
+    // LearnOpenGL's lit cube, per vertex: the faces' two triangles miss the highlight.
     snapshot(
         &mut results,
         "cube_per_vertex",

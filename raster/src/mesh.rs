@@ -113,7 +113,7 @@ impl Mesh {
     }
 
     /// The unit cube `[−½, ½]³`, two triangles per face and four vertices per face, so each face
-    /// is flat (as in the notes' lit cube).
+    /// is flat (as in LearnOpenGL's lit cube, "Basic Lighting").
     #[must_use]
     pub fn cube() -> Self {
         let mut positions = Vec::new();

@@ -3,8 +3,11 @@
 /// Three parallel slices of coordinates: point `i` is `(x[i], y[i], z[i])`.
 ///
 /// Used for positions (any finite coordinates) and normals (any finite vector; normalised per
-/// point, a zero normal meaning "no diffuse or specular"). Slices of different lengths are allowed:
-/// a batch shades the shortest common prefix of all its slices.
+/// point, a zero normal meaning "no diffuse or specular").
+///
+/// **Lengths:** a batch's nine slices (positions, normals and the [`SoaRgb`] output) must all have
+/// the same length; debug builds assert it (the assertion panics). Release builds do not check:
+/// they shade the shortest common prefix of the nine and leave the rest of the output untouched.
 #[derive(Clone, Copy, Debug)]
 pub struct SoaVec3<'a> {
     /// The `x` coordinates.
