@@ -228,6 +228,29 @@ pub trait LightSource {
     ///
     /// **Domain:** any finite `p`. **Returns** a unit or zero direction and a finite factor `≥ 0`.
     fn sample(&self, p: Vec3) -> LightSample;
+
+    /// An upper bound of [`sample`](Self::sample)`(p).factor` over every point `p`, or `+∞` when
+    /// none is known (the default).
+    ///
+    /// [`Shader`](crate::Shader) uses it once, when prepared: when the bounds show that no sum
+    /// of the shading equation can come near `f32::MAX`, it skips the per-point saturation.
+    ///
+    /// **Contract:** like [`sample`](Self::sample)'s finite factor, this is a promise the
+    /// implementation makes: `sample(p).factor ≤ max_factor()` for every `p`. A light type outside
+    /// this crate can leave the default (its points are then saturated, as always); a bound that
+    /// is too small voids the no-overflow guarantee for scenes with colours near `f32::MAX`.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{Attenuation, LightColors, LightSource, PointLight};
+    /// let lamp = PointLight::try_new(Vec3::Y, Attenuation::polynomial(1.0, 0.09, 0.032), LightColors::BLACK)?;
+    /// assert_eq!(lamp.max_factor(), 1.0); // the factor at the light itself
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[inline]
+    fn max_factor(&self) -> f32 {
+        f32::INFINITY
+    }
 }
 
 /// A light infinitely far away: one direction everywhere, no attenuation.
@@ -289,6 +312,11 @@ impl LightSource for DirectionalLight {
     #[inline]
     fn colors(&self) -> &LightColors {
         &self.colors
+    }
+    /// 1: a directional light does not fade.
+    #[inline]
+    fn max_factor(&self) -> f32 {
+        1.0
     }
     /// `L` = the light's direction, factor 1: no distance, no attenuation work.
     #[inline(always)]
@@ -361,6 +389,11 @@ impl LightSource for PointLight {
     #[inline]
     fn colors(&self) -> &LightColors {
         &self.colors
+    }
+    /// The attenuation at distance 0, where every form is largest.
+    #[inline]
+    fn max_factor(&self) -> f32 {
+        self.attenuation.factor(0.0)
     }
     /// `L = normalize(P_light − p)`, factor = attenuation(‖P_light − p‖).
     #[inline(always)]
@@ -682,6 +715,11 @@ impl LightSource for SpotLight {
     fn colors(&self) -> &LightColors {
         &self.colors
     }
+    /// The attenuation at distance 0 (the spot factor is at most 1).
+    #[inline]
+    fn max_factor(&self) -> f32 {
+        self.attenuation.factor(0.0)
+    }
     /// Like [`PointLight`], times [`SpotLight::spot_factor`].
     #[inline]
     fn sample(&self, p: Vec3) -> LightSample {
@@ -731,6 +769,14 @@ impl LightSource for Light {
             Light::Directional(l) => l.colors(),
             Light::Point(l) => l.colors(),
             Light::Spot(l) => l.colors(),
+        }
+    }
+    #[inline]
+    fn max_factor(&self) -> f32 {
+        match self {
+            Light::Directional(l) => l.max_factor(),
+            Light::Point(l) => l.max_factor(),
+            Light::Spot(l) => l.max_factor(),
         }
     }
     #[inline]

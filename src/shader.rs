@@ -1,6 +1,6 @@
 //! A model, a material and a scene prepared once, then many points shaded one at a time.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::incidence::Incidence;
 use crate::light::{LightSource, sanitize_colour};
@@ -47,7 +47,7 @@ use crate::visibility::{Unshadowed, Visibility};
 /// every ray builds one per hit.
 ///
 /// ```
-/// use glam::Vec3;
+/// use glam::{Vec3, Vec3A};
 /// use phong::{Attenuation, BlinnPhong, LightColors, Material, PointLight, Scene, Shader, Viewer};
 ///
 /// let lamp = PointLight::try_new(
@@ -72,17 +72,23 @@ pub struct Shader<'a, M, L> {
     ambient_light: Vec3,
     viewer: Viewer,
     emission: Vec3,
+    /// Upper bounds of the three light sums over every point: `Ia + Σ fmax·La`, `Σ fmax·Ld`,
+    /// `Σ fmax·Ls` (`fmax` = [`LightSource::max_factor`]), saturated at `f32::MAX`.
+    bounds: [Vec3A; 3],
     prepared: Prepared,
 }
 
 /// A surface with its specular constants, sanitised, ready for the per-light loop.
 #[derive(Clone, Copy, Debug)]
 struct Prepared {
-    ka: Vec3,
-    kd: Vec3,
-    ks: Vec3,
+    ka: Vec3A,
+    kd: Vec3A,
+    ks: Vec3A,
     s: f32,
     specular: SpecularPlan,
+    /// Whether no sum, product or total of the equation can reach `f32::MAX` at any point for
+    /// this surface, so the per-point saturation can be skipped (see [`Shader::prepare`]).
+    safe: bool,
 }
 
 impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
@@ -101,21 +107,71 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             Viewer::At(eye) => Viewer::At(eye),
             Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
         };
-        let s = material.shininess();
-        Shader {
+        let ambient_light = sanitize_colour(scene.ambient);
+        let mut bounds = [Vec3A::from(ambient_light), Vec3A::ZERO, Vec3A::ZERO];
+        for light in scene.lights {
+            let f = light.max_factor();
+            let c = light.colors();
+            bounds[0] += Vec3A::from(c.ambient()) * f;
+            bounds[1] += Vec3A::from(c.diffuse()) * f;
+            bounds[2] += Vec3A::from(c.specular()) * f;
+        }
+        let mut shader = Shader {
             model,
             resolved,
             lights: scene.lights,
-            ambient_light: sanitize_colour(scene.ambient),
+            ambient_light,
             viewer,
             emission: material.emission(),
+            bounds: bounds.map(|b| b.min(Vec3A::splat(math::MAX))),
             prepared: Prepared {
-                ka: material.ambient(),
-                kd: material.diffuse(),
-                ks: material.specular(),
-                s,
-                specular: plan_for(resolved, s),
+                ka: Vec3A::ZERO,
+                kd: Vec3A::ZERO,
+                ks: Vec3A::ZERO,
+                s: 0.0,
+                specular: plan_for(None, 0.0),
+                safe: false,
             },
+        };
+        shader.prepared = shader.prepare(
+            material.ambient(),
+            material.diffuse(),
+            material.specular(),
+            material.shininess(),
+        );
+        shader
+    }
+
+    /// The per-surface constants for sanitised reflectances and shininess `s ≥ 0`.
+    ///
+    /// `safe` holds when `A`, `d·D`, `k·S` and `Ka·A + Kd·d·D + Ks·k·S + Ke` are all below
+    /// `f32::MAX / 4` per channel, with `A, D, S` the light sums' bounds, `d` the diffuse scale and `k` the specular scale (normalisation)
+    /// of a crate model: every lobe and gate is at most 1 plus a few ulps, and each visibility at
+    /// most 1, so no sum or product can then overflow, and the saturating `min`s are skipped. A
+    /// product that overflows here is `+∞`, which fails the test: the check itself cannot
+    /// misjudge. Models from outside the crate are never `safe`.
+    #[inline]
+    fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32) -> Prepared {
+        let specular = plan_for(self.resolved, s);
+        let (ka, kd, ks) = (Vec3A::from(ka), Vec3A::from(kd), Vec3A::from(ks));
+        let safe = self.resolved.is_some_and(|r| {
+            // The sums themselves (before the reflectances scale them), then the total.
+            let sums = [
+                self.bounds[0],
+                r.diffuse(1.0) * self.bounds[1],
+                specular.scale * self.bounds[2],
+            ];
+            let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + Vec3A::from(self.emission);
+            let quarter = 0.25 * math::MAX;
+            sums.iter().all(|x| x.max_element() < quarter) && most.max_element() < quarter
+        });
+        Prepared {
+            ka,
+            kd,
+            ks,
+            s,
+            specular,
+            safe,
         }
     }
 
@@ -124,7 +180,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// viewer, one normalisation.
     ///
     /// ```
-    /// use glam::Vec3;
+    /// use glam::{Vec3, Vec3A};
     /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
     /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE)?)?;
     /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
@@ -170,7 +226,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// **Domain:** as [`shade`](Self::shade); visibilities in `[0, 1]` (see [`Visibility`]).
     ///
     /// ```
-    /// use glam::Vec3;
+    /// use glam::{Vec3, Vec3A};
     /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
     /// let colors = LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE)?;
     /// let suns = [DirectionalLight::try_new(Vec3::Z, colors)?, DirectionalLight::try_new(Vec3::Y, colors)?];
@@ -205,7 +261,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// polynomial otherwise).
     ///
     /// ```
-    /// use glam::Vec3;
+    /// use glam::{Vec3, Vec3A};
     /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Surface, Unshadowed, Viewer};
     /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE)?)?;
     /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
@@ -231,13 +287,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             "Shader::shade_surface: surface outside its domain: {surface:?}"
         );
         let s = math::clamp_or_lo(surface.shininess, 0.0, math::MAX);
-        let p = Prepared {
-            ka: sanitize_colour(surface.ambient),
-            kd: sanitize_colour(surface.diffuse),
-            ks: sanitize_colour(surface.specular),
+        let p = self.prepare(
+            sanitize_colour(surface.ambient),
+            sanitize_colour(surface.diffuse),
+            sanitize_colour(surface.specular),
             s,
-            specular: plan_for(self.resolved, s),
-        };
+        );
         self.run(&p, position, normal, visibility)
     }
 
@@ -250,7 +305,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// attenuation × spot factor.
     ///
     /// ```
-    /// use glam::Vec3;
+    /// use glam::{Vec3, Vec3A};
     /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
     /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::BLACK)?;
     /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Y) };
@@ -312,11 +367,20 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             },
             None => self.custom_loop(surface, pt, visibility),
         };
-        let sat = Vec3::splat(math::MAX);
+        if surface.safe {
+            // Nothing can reach f32::MAX (see `prepare`): the products as they are.
+            return Terms {
+                ambient: (surface.ka * ambient).into(),
+                diffuse: (surface.kd * diffuse).into(),
+                specular: (surface.ks * specular).into(),
+                emission: self.emission,
+            };
+        }
+        let sat = Vec3A::splat(math::MAX);
         Terms {
-            ambient: (surface.ka * ambient.min(sat)).min(sat),
-            diffuse: (surface.kd * diffuse.min(sat)).min(sat),
-            specular: (surface.ks * specular.min(sat)).min(sat),
+            ambient: (surface.ka * ambient.min(sat)).min(sat).into(),
+            diffuse: (surface.kd * diffuse.min(sat)).min(sat).into(),
+            specular: (surface.ks * specular.min(sat)).min(sat).into(),
             emission: self.emission,
         }
     }
@@ -330,7 +394,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         pt: Point,
         visibility: impl Visibility,
         pow: impl Fn(f32) -> f32,
-    ) -> (Vec3, Vec3, Vec3) {
+    ) -> (Vec3A, Vec3A, Vec3A) {
         if r.lobe == Lobe::Blinn {
             self.light_loop::<BLINN>(r, surface, pt, visibility, pow)
         } else {
@@ -348,7 +412,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         pt: Point,
         mut visibility: impl Visibility,
         pow: impl Fn(f32) -> f32,
-    ) -> (Vec3, Vec3, Vec3) {
+    ) -> (Vec3A, Vec3A, Vec3A) {
         let Point { position, n, v } = pt;
         let n_dot_v = n.dot(v);
         // A missing direction (zero vector) means no highlight. For Phong a zero L or V already
@@ -356,7 +420,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         // three, and L is tested per light below.
         let present = n != Vec3::ZERO && (LOBE != BLINN || v != Vec3::ZERO);
         let specular_scale = if present { surface.specular.scale } else { 0.0 };
-        let sums = (self.ambient_light, Vec3::ZERO, Vec3::ZERO);
+        let sums = (Vec3A::from(self.ambient_light), Vec3A::ZERO, Vec3A::ZERO);
         let k = LightConsts {
             r,
             position,
@@ -381,12 +445,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     #[inline(always)]
     fn add_light<const LOBE: u8>(
         k: &LightConsts,
-        sums: (Vec3, Vec3, Vec3),
+        sums: (Vec3A, Vec3A, Vec3A),
         i: usize,
         light: &L,
         vis: f32,
         pow: &impl Fn(f32) -> f32,
-    ) -> (Vec3, Vec3, Vec3) {
+    ) -> (Vec3A, Vec3A, Vec3A) {
         let LightConsts {
             r,
             position,
@@ -421,10 +485,10 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         // Scalar weights first and saturated: finite × finite never gives NaN, and every colour
         // is finite and ≥ 0, so the sums below can reach +∞ (saturated at the end) but never NaN.
         let colors = light.colors();
-        ambient += colors.ambient() * f;
-        diffuse += colors.diffuse() * math::min_or(fv * wd, math::MAX);
+        ambient += Vec3A::from(colors.ambient()) * f;
+        diffuse += Vec3A::from(colors.diffuse()) * math::min_or(fv * wd, math::MAX);
         if LOBE != NO_LOBE {
-            specular += colors.specular() * math::min_or(fv * ws, math::MAX);
+            specular += Vec3A::from(colors.specular()) * math::min_or(fv * ws, math::MAX);
         }
         (ambient, diffuse, specular)
     }
@@ -438,12 +502,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         surface: &Prepared,
         pt: Point,
         mut visibility: impl Visibility,
-    ) -> (Vec3, Vec3, Vec3) {
+    ) -> (Vec3A, Vec3A, Vec3A) {
         let Point { position, n, v } = pt;
         let specular_on = M::HAS_SPECULAR && n != Vec3::ZERO && v != Vec3::ZERO;
-        let mut ambient = self.ambient_light;
-        let mut diffuse = Vec3::ZERO;
-        let mut specular = Vec3::ZERO;
+        let mut ambient = Vec3A::from(self.ambient_light);
+        let mut diffuse = Vec3A::ZERO;
+        let mut specular = Vec3A::ZERO;
         for (i, light) in self.lights.iter().enumerate() {
             let sample = light.sample(position);
             let vis = visibility.visibility(i);
@@ -466,9 +530,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 (self.model.diffuse(&g), ws)
             };
             let colors = light.colors();
-            ambient += colors.ambient() * f;
-            diffuse += colors.diffuse() * math::min_or(fv * wd, math::MAX);
-            specular += colors.specular() * math::min_or(fv * ws, math::MAX);
+            ambient += Vec3A::from(colors.ambient()) * f;
+            diffuse += Vec3A::from(colors.diffuse()) * math::min_or(fv * wd, math::MAX);
+            specular += Vec3A::from(colors.specular()) * math::min_or(fv * ws, math::MAX);
         }
         (ambient, diffuse, specular)
     }
@@ -519,21 +583,25 @@ fn n_dot_h_squared(n: Vec3, l: Vec3, v: Vec3) -> f32 {
 
 /// The specular constants for shininess `s`: from the resolved model, or unused (custom models
 /// evaluate their own lobes).
-#[inline]
+#[inline(always)]
 fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
     match resolved {
         // Point by point, `powf` is cheaper than the polynomials (measured: docs/performance.md),
-        // so `Auto` takes squaring for a whole exponent and `powf` for any other here.
+        // so `Auto` takes squaring for a whole exponent and `powf` for any other here. Decided
+        // inline, without `at_shininess`'s general plan: `shade_surface` runs it per point.
         Some(r) if r.pow == PowStrategy::Auto => {
-            let p = r.at_shininess(s);
-            match p.plan {
-                PowPlan::Squaring { .. } => p,
-                _ => ResolvedModel {
-                    pow: PowStrategy::Exact,
-                    ..r
-                }
-                .at_shininess(s),
-            }
+            let s = math::clamp_or_lo(s, 0.0, math::MAX);
+            let (scale, e) = match r.lobe {
+                Lobe::None => (0.0, 0.0),
+                Lobe::Phong => (r.normalization.phong_factor(s), s),
+                Lobe::Blinn => (r.normalization.blinn_factor(s), 0.5 * s),
+            };
+            let plan = if e <= 1024.0 && e == (e as u32) as f32 {
+                PowPlan::Squaring { n: e as u32 }
+            } else {
+                PowPlan::Exact { s: e }
+            };
+            SpecularPlan { scale, plan }
         }
         Some(r) => r.at_shininess(s),
         None => SpecularPlan {

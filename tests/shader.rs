@@ -429,3 +429,34 @@ proptest! {
             "{model:?}: {got} vs {want}");
     }
 }
+
+/// Found by tests/fuzz_promises.rs while the shader learnt to skip saturation when nothing can
+/// overflow: two ambient colours whose sum passes `f32::MAX`, under an ambient reflectance so
+/// small that `Ka ⊙ Σ La` would look harmless. The sum must still saturate first (the equation's
+/// rule), giving a finite ambient term, not +∞.
+#[test]
+fn an_overflowing_light_sum_under_a_tiny_reflectance_saturates() {
+    let colors = |a: f32| {
+        phong::LightColors::try_new(Vec3::new(0.0, 0.0, a), Vec3::splat(0.5), Vec3::splat(0.5))
+            .unwrap()
+    };
+    let lights = [
+        phong::DirectionalLight::try_new(Vec3::X, colors(1.02638766e37)).unwrap(),
+        phong::DirectionalLight::try_new(Vec3::Y, colors(f32::MAX)).unwrap(),
+    ];
+    let m =
+        phong::Material::try_new(Vec3::splat(4.1537027e-28), Vec3::ONE, Vec3::ONE, 8.0).unwrap();
+    let scene = phong::Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: phong::Viewer::Infinite(Vec3::Z),
+    };
+    let t = phong::Shader::new(phong::Phong::default(), &m, &scene).shade(Vec3::ZERO, Vec3::Z);
+    assert!(t.ambient.is_finite(), "{t:?}");
+    // sat(Σ La) = f32::MAX, times Ka: the saturation rule's value, to the product's rounding.
+    let want = f32::MAX * 4.1537027e-28;
+    assert!(
+        (t.ambient.z - want).abs() <= want * 2.0 * f32::EPSILON,
+        "{t:?}"
+    );
+}
