@@ -3,7 +3,7 @@
 //! Every form is finite at `d = 0` and for every finite or infinite `d ≥ 0`, and non-increasing in
 //! `d` (for the documented, non-negative parameters; the windowed forms within rounding, see
 //! [`Attenuation::factor`]). [`Attenuation::cull_radius`] gives a distance beyond which the
-//! factor stays below a threshold, so a renderer can skip lights that cannot change a pixel. Derivations: [docs/derivations.md](https://example.invalid/phong/docs/derivations.md#attenuation).
+//! factor stays below a threshold, so a renderer can skip lights that cannot change a pixel. Derivations: docs/derivations.md, section "Attenuation".
 
 use crate::error::{self, PhongError};
 use crate::math;

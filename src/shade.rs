@@ -79,7 +79,7 @@ pub struct Scene<'a, L> {
 /// its other parts, as in OpenGL and LearnOpenGL's multiple-lights chapter.
 ///
 /// **Domain:** any finite `position` and `normal` (the normal need not be unit: it is normalised
-/// here, over the whole `f32` range, as the notes' shaders do). Lights, material and scene as
+/// here as LearnOpenGL's shaders do, but over the whole `f32` range). Lights, material and scene as
 /// documented on their types.
 ///
 /// **Degenerate input** (no NaN, no panic, for finite input):

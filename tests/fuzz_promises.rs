@@ -593,6 +593,155 @@ fn colour(r: &mut Rng, c: &mut Check) {
     c.count("quantize_u8", 1);
 }
 
+/// The rest of the public surface: the checked constructors (an `Ok` is always a valid value, an
+/// `Err` never a panic), the `try_` twins of the total functions, the cosine-form incidence, the
+/// per-point surface helpers, the spot factor, the GPU mirrors and the `Terms` algebra.
+fn rest(r: &mut Rng, c: &mut Check) {
+    let v = r.hard_vec();
+    let tn = phong::try_normalize(v);
+    c.count("try_normalize", 1);
+    c.expect(
+        "try_normalize",
+        tn.map_or(phong::normalize_or_zero(v) == Vec3::ZERO, |u| {
+            u == phong::normalize_or_zero(v) && unit_or_zero(u)
+        }),
+        || format!("{v:?} -> {tn:?}"),
+    );
+    let (a, b) = (r.direction(Vec3::Z), r.unit());
+    let b = if r.coin() { -a } else { b };
+    let th = phong::try_halfway(a, b);
+    c.count("try_halfway", 1);
+    c.expect(
+        "try_halfway",
+        th.map_or(phong::halfway(a, b) == Vec3::ZERO, |h| {
+            h == phong::halfway(a, b)
+        }),
+        || format!("({a:?}, {b:?}) -> {th:?}"),
+    );
+
+    // Cosines of unit vectors, possibly inconsistent (the caller's own rounding).
+    let (nl, nv, lv) = (r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0));
+    let g = Incidence::from_cosines(nl, nv, lv);
+    let (rv, nh) = (g.r_dot_v(), g.n_dot_h_squared());
+    c.count("Incidence::from_cosines", 1);
+    c.count("Incidence::r_dot_v", 1);
+    c.count("Incidence::n_dot_h_squared", 1);
+    c.expect(
+        "Incidence::from_cosines",
+        rv.is_finite() && (-1.0..=1.0).contains(&rv) && nh.is_finite() && (0.0..=1.0).contains(&nh),
+        || format!("({nl}, {nv}, {lv}) -> R·V {rv}, (N·H)² {nh}"),
+    );
+    let (n, l, vv) = (r.hard_vec(), r.hard_vec(), r.hard_vec());
+    let gu = Incidence::from_unnormalized(n, l, vv);
+    c.count("Incidence::from_unnormalized", 1);
+    c.expect(
+        "Incidence::from_unnormalized",
+        gu.n_dot_l.is_finite() && gu.n_dot_v.is_finite() && gu.r_dot_v().is_finite(),
+        || format!("({n:?}, {l:?}, {vv:?}) -> {gu:?}"),
+    );
+
+    // Checked constructors on hard values: Ok only for values in the domain.
+    let (x, y, z, w) = (r.hard(), r.hard(), r.hard(), r.hard());
+    let m = Material::try_new(Vec3::new(x, y, z), Vec3::splat(y), Vec3::splat(z), w);
+    let lc = LightColors::try_from_strengths(Vec3::new(x, y, z), w, y, z);
+    let lp = LightColors::try_from_power(Vec3::new(x, y, z), w);
+    let at = Attenuation::try_polynomial(x, y, z);
+    let spot = SpotLight::try_with_cone(
+        Vec3::new(x, y, z),
+        r.hard_vec(),
+        SpotCone {
+            cutoff: r.hard(),
+            exponent: r.hard(),
+        },
+        Attenuation::None,
+        LightColors::BLACK,
+    );
+    c.count("checked constructors", 5);
+    let colour_ok = |v: Vec3| v.is_finite() && v.min_element() >= 0.0;
+    c.expect(
+        "checked constructors",
+        m.is_err_and(|e| !e.to_string().is_empty())
+            || m.is_ok_and(|m| {
+                colour_ok(m.ambient()) && colour_ok(m.diffuse()) && m.shininess() >= 0.0
+            }),
+        || format!("Material::try_new -> {m:?}"),
+    );
+    c.expect(
+        "checked constructors",
+        [lc, lp].iter().all(|l| {
+            l.is_err()
+                || l.is_ok_and(|l| {
+                    colour_ok(l.ambient()) && colour_ok(l.diffuse()) && colour_ok(l.specular())
+                })
+        }),
+        || format!("LightColors -> {lc:?} / {lp:?}"),
+    );
+    c.expect(
+        "checked constructors",
+        at.is_err() || at.is_ok_and(|a| a.validated() == Ok(a) && a.factor(1.0).is_finite()),
+        || format!("Attenuation::try_polynomial({x}, {y}, {z}) -> {at:?}"),
+    );
+    c.expect(
+        "checked constructors",
+        spot.is_err()
+            || spot.is_ok_and(|s| {
+                let f = s.spot_factor(r.unit());
+                (0.0..=1.0).contains(&f) && unit_or_zero(s.axis())
+            }),
+        || format!("SpotLight::try_with_cone -> {spot:?}"),
+    );
+    c.count("SpotLight::spot_factor", 1);
+
+    // Per-point surfaces and material overrides stay in their domains.
+    let base = r.material();
+    let (dt, st) = (r.colour(), r.colour());
+    let tex = base.textured(dt, st);
+    let surf = Surface::textured(dt, st, r.shininess()).with_occlusion(r.unit_f32());
+    c.count("Material::textured", 1);
+    c.count("Surface::textured", 1);
+    c.count("Surface::with_occlusion", 1);
+    c.count("Surface::of", 1);
+    c.expect(
+        "Surface::textured",
+        surf.is_valid() && Surface::of(&tex).is_valid() && colour_ok(tex.diffuse()),
+        || format!("{base:?} {dt:?} {st:?} -> {tex:?}, {surf:?}"),
+    );
+
+    // Terms algebra: sums and scalings of valid terms stay valid (saturated, never NaN).
+    let t1 = phong::Terms {
+        ambient: r.colour(),
+        diffuse: r.colour(),
+        specular: r.colour(),
+        emission: r.colour(),
+    };
+    let k = r.hard_nonneg();
+    let mut t2 = t1 + t1 * k;
+    t2 += t1;
+    c.count("Terms ops", 3);
+    c.expect(
+        "Terms ops",
+        colour_ok(t2.total()) && colour_ok(t2.ambient) && colour_ok(t2.specular),
+        || format!("{t1:?} * {k} -> {t2:?}"),
+    );
+
+    // GPU mirrors of valid parameters are finite.
+    let light = r.light(Vec3::ZERO);
+    let gl = phong::gpu::GpuLight::from(&light);
+    let gm = phong::gpu::GpuMaterial::from(&base);
+    let model = r.model();
+    let gp = phong::gpu::GpuParams::new(&model, Viewer::Infinite(r.unit()), r.colour(), 1);
+    c.count("gpu mirrors", 3);
+    let finite = |b: &[u8]| {
+        b.chunks_exact(4)
+            .all(|w| !f32::from_ne_bytes([w[0], w[1], w[2], w[3]]).is_nan())
+    };
+    c.expect(
+        "gpu mirrors",
+        finite(bytemuck::bytes_of(&gm)) && finite(bytemuck::bytes_of(&gp)) && gl.kind <= 2,
+        || format!("{light:?} -> {gl:?}; {base:?} -> {gm:?}"),
+    );
+}
+
 /// A random scene around the point `p`: 1–4 lights of every kind, a viewer at, near or far from
 /// the point, or infinitely far.
 fn scene_parts(r: &mut Rng, p: Vec3) -> (Vec<Light>, Vec3, Viewer) {
@@ -828,7 +977,13 @@ fn work(seed: u64, budget: u64, log: &Mutex<Log>) {
             5 => mesh(&mut r, &mut c),
             6..=7 => attenuation(&mut r, &mut c),
             8..=10 => lobes(&mut r, &mut c),
-            11 => colour(&mut r, &mut c),
+            11 => {
+                if r.coin() {
+                    colour(&mut r, &mut c)
+                } else {
+                    rest(&mut r, &mut c)
+                }
+            }
             12..=13 => shading(&mut r, &mut c),
             14 => batch(&mut r, &mut c),
             _ => {
@@ -852,11 +1007,18 @@ fn work(seed: u64, budget: u64, log: &Mutex<Log>) {
     }
 }
 
+/// `name` as a decimal or `0x` hexadecimal number (underscores allowed), or `default` when unset.
+/// A value that does not parse is an error, not a silent default.
 fn env_u64(name: &str, default: u64) -> u64 {
-    std::env::var(name)
-        .ok()
-        .and_then(|s| s.replace('_', "").parse().ok())
-        .unwrap_or(default)
+    let Ok(raw) = std::env::var(name) else {
+        return default;
+    };
+    let s = raw.replace('_', "");
+    let parsed = match s.strip_prefix("0x") {
+        Some(hex) => u64::from_str_radix(hex, 16).ok(),
+        None => s.parse().ok(),
+    };
+    parsed.unwrap_or_else(|| panic!("{name}={raw:?} is not a number"))
 }
 
 #[test]

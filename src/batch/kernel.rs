@@ -1,8 +1,9 @@
-//! The batch kernel: one source, 16 points at a time, compiled once per instruction-set level.
+//! The portable batch kernel: one source, 16 points at a time, compiled for the `Portable`,
+//! `Sse2` and `Avx2` levels (the `Avx512` level runs the intrinsics kernel in `avx512.rs`, which
+//! follows the same algorithm).
 //!
 //! Every quantity is a `[f32; 16]` and every operation a loop over the 16 lanes with no
-//! cross-lane dependency, so LLVM turns each into one AVX-512 instruction (or two AVX2, or four
-//! SSE2 ones). Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:
+//! cross-lane dependency, so LLVM turns each into two AVX2 instructions or four SSE2 ones. Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:
 //!
 //! ```text
 //! N = n·rsqrt(n·n),  V̂ = V·rsqrt(V·V),  L̂ = L·rsqrt(L·L),  d = (L·L)·rsqrt(L·L)
@@ -15,7 +16,8 @@
 //! over the lights, `Ia + Σ f·La`, `Σ f·max(N·L, 0)·Ld` and `Σ min(f·w, MAX)·Ls` (`w` the gated,
 //! normalised specular lobe), each saturated and then multiplied by the material's colour once.
 //!
-//! The inverse square root is the one level-specific operation (passed in as `rsqrt`). Points the
+//! Among the levels that compile this source, the inverse square root is the one level-specific
+//! operation (passed in as `rsqrt`). Points the
 //! fast path cannot represent (a squared norm outside `[1e-30, 1e30]`: a zero or huge normal, the
 //! viewer or a light at the point, huge coordinates) are flagged and shaded again by the scalar
 //! [`shade`](crate::shade), so the batch has its degenerate-case results exactly.
@@ -62,8 +64,7 @@ pub(crate) enum ViewK {
 
 /// A light's kernel form with its colours. In general the material's colours are applied once
 /// per point, to the sums over the lights (see [`chunk`]), as [`shade`](crate::shade) applies
-/// them; when nothing can overflow ([`Setup::folded`]) the portable kernel uses the products
-/// instead, which give the same values up to rounding with a third of the accumulators.
+/// them; when nothing can overflow ([`Setup::folded`]) both kernels use the products instead, which give the same values up to rounding with a third of the accumulators.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PreparedLight {
     pub(crate) lane: LaneLight,
