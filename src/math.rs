@@ -79,13 +79,31 @@ pub(crate) const MAX: f32 = f32::MAX;
 /// The shading loop runs a dozen of these per light, so the difference is measurable.
 #[inline(always)]
 pub(crate) fn max_or(x: f32, lo: f32) -> f32 {
+    let x = quiet(x);
     if x > lo { x } else { lo }
 }
 
 /// `min(x, hi)` that maps NaN to `hi`, in one `minss` (see [`max_or`]).
 #[inline(always)]
 pub(crate) fn min_or(x: f32, hi: f32) -> f32 {
+    let x = quiet(x);
     if x < hi { x } else { hi }
+}
+
+/// `x` with a signalling NaN made quiet, where the compare-and-selects above need it.
+///
+/// x86's `maxss`/`minss` return the second operand for every NaN, so there the select is exact
+/// and this is the identity. Elsewhere LLVM may lower the select to IEEE maxNum/minNum (AArch64's
+/// `fmaxnm`/`fminnm`), which return a quiet NaN, not the bound, for a *signalling* NaN; adding 0
+/// quiets it first and changes nothing else but the sign of a zero (found by the aarch64 run of
+/// the unchecked-constructor property tests, which feed arbitrary bit patterns).
+#[inline(always)]
+fn quiet(x: f32) -> f32 {
+    if cfg!(any(target_arch = "x86", target_arch = "x86_64")) {
+        x
+    } else {
+        x + 0.0
+    }
 }
 
 /// Clamps to `[lo, hi]`, mapping NaN to `lo`. Used on the total paths so no NaN escapes.

@@ -266,3 +266,31 @@ proptest! {
         prop_assert!((t.specular.x - ws).abs() <= 4e-6 * ws.max(1.0), "specular {} vs {ws}", t.specular.x);
     }
 }
+
+/// A signalling NaN is still NaN to the sanitising rule (NaN reads as 0). On AArch64 the
+/// compiler's max/min instructions turn a signalling NaN into a quiet one instead of returning
+/// the bound, which made `Attenuation::polynomial` keep `f32::MAX` there (found by the aarch64
+/// run of tests/promises_attenuation.rs). Release builds only: debug builds assert the domain.
+#[test]
+fn a_signalling_nan_sanitises_to_zero() {
+    if cfg!(debug_assertions) {
+        return;
+    }
+    let snan = f32::from_bits(0x7fa0_0000);
+    assert!(snan.is_nan());
+    for x in [snan, -snan, f32::NAN] {
+        let x = std::hint::black_box(x);
+        assert_eq!(
+            Attenuation::polynomial(0.0, x, 0.0),
+            Attenuation::Polynomial {
+                constant: 0.0,
+                linear: 0.0,
+                quadratic: 0.0
+            },
+            "{:#x}",
+            x.to_bits()
+        );
+        let c = LightColors::new(Vec3::splat(x), Vec3::ONE, Vec3::new(x, 1.0, x));
+        assert_eq!((c.ambient(), c.specular()), (Vec3::ZERO, Vec3::Y));
+    }
+}
