@@ -17,7 +17,8 @@
 //!   shininess (non-integer, uniform in [2, 128]) and shadow factor.
 //!
 //! Extra groups for docs/performance.md: `pow_4096` (every pow strategy, both models, s = 32 and
-//! 20.5) and `levels_4096` (every dispatch level this CPU runs).
+//! 20.5), `levels_4096` (every dispatch level this CPU runs) and `parallel_1m` (one call against
+//! one part per core on scoped threads, the batch module's "Many cores" recipe).
 //!
 //! Before timing, each group asserts that `scalar`, `batch` and `batch_frac` agree with
 //! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
@@ -412,6 +413,68 @@ fn levels_4096(c: &mut Criterion) {
     g.finish();
 }
 
+/// The batch module's "Many cores" recipe: 2²⁰ points shaded by one call, and cut into one part
+/// per core shaded on scoped threads (the output is bit-identical: tests/batch_parallel.rs).
+fn parallel_1m(c: &mut Criterion) {
+    let n = 1 << 20;
+    let (p, nn) = points(n, 0x5eed);
+    let lights = [light()];
+    let scene = scene(&lights);
+    let m = material(32.0);
+    let model = Phong::default();
+    let col = |v: &[Vec3], k: usize| v.iter().map(|q| q[k]).collect::<Vec<f32>>();
+    let (px, py, pz) = (col(&p, 0), col(&p, 1), col(&p, 2));
+    let (nx, ny, nz) = (col(&nn, 0), col(&nn, 1), col(&nn, 2));
+    let (mut r, mut g, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
+    let mut group = c.benchmark_group("parallel_1m");
+    group
+        .throughput(Throughput::Elements(n as u64))
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    group.bench_function("serial", |bch| {
+        bch.iter(|| {
+            phong::shade_batch(
+                black_box(&model),
+                &m,
+                &scene,
+                SoaVec3::new(&px, &py, &pz),
+                SoaVec3::new(&nx, &ny, &nz),
+                SoaRgb::new(&mut r, &mut g, &mut b),
+            )
+        })
+    });
+    group.bench_function("threads", |bch| {
+        bch.iter(|| {
+            let part = n.div_ceil(threads);
+            std::thread::scope(|s| {
+                let outs = r
+                    .chunks_mut(part)
+                    .zip(g.chunks_mut(part))
+                    .zip(b.chunks_mut(part));
+                for (k, ((r, g), b)) in outs.enumerate() {
+                    let (lo, hi) = (k * part, (k * part + part).min(n));
+                    let positions = SoaVec3::new(&px[lo..hi], &py[lo..hi], &pz[lo..hi]);
+                    let normals = SoaVec3::new(&nx[lo..hi], &ny[lo..hi], &nz[lo..hi]);
+                    let (model, m, scene) = (&model, &m, &scene);
+                    s.spawn(move || {
+                        phong::shade_batch(
+                            black_box(model),
+                            m,
+                            scene,
+                            positions,
+                            normals,
+                            SoaRgb::new(r, g, b),
+                        )
+                    });
+                }
+            })
+        })
+    });
+    group.finish();
+}
+
 criterion_group!(
     benches,
     phong_4096,
@@ -419,6 +482,7 @@ criterion_group!(
     phong_1m,
     blinn_1m,
     pow_4096,
-    levels_4096
+    levels_4096,
+    parallel_1m
 );
 criterion_main!(benches);

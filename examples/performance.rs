@@ -571,6 +571,22 @@ fn main() {
          above).\n"
     );
 
+    // ---- Many cores.
+    let serial = mpts("parallel_1m", "serial", 1 << 20, "new");
+    let threaded = mpts("parallel_1m", "threads", 1 << 20, "new");
+    let _ = writeln!(
+        md,
+        "## Many cores (`parallel_1m`)\n\n\
+         The batch module's recipe: 2²⁰ points in plain `Vec`s, one `shade_batch` call against one \
+         part per core on scoped threads (bit-identical output: tests/batch_parallel.rs). Phong, \
+         s = 32, one point light, measured in a criterion run of its own; this machine has {} cores.\n\n\
+         | serial (Mpts/s) | threads (Mpts/s) | threads ÷ serial |\n|---:|---:|---:|\n| {} | {} | {} |\n",
+        std::thread::available_parallelism().map_or(1, |t| t.get()),
+        fmt_opt(serial, 0),
+        fmt_opt(threaded, 0),
+        fmt_opt(serial.zip(threaded).map(|(s, t)| t / s), 2)
+    );
+
     // ---- Strategies.
     let mut exact_rate = [0.0; 2];
     let mut chart = Vec::new();

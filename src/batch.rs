@@ -97,6 +97,47 @@
 //! viewer nearly opposite, e.g. a grazing glint), where `2η / (2 + 2 L·V)` above would exceed
 //! `4e-4` (`shade` computes `(N·H)²` from `L + V`, whose error grows only as
 //! `2⁻²⁴ / ‖L + V‖`). From finite input no NaN is produced.
+//!
+//! ## Many cores
+//!
+//! Every point is shaded from its own inputs and the call's constants alone, so a batch split
+//! into parts gives exactly the same bits as the whole, whatever the split. To use every core,
+//! cut the nine slices at the same indices and shade the parts on threads; the output is then
+//! identical to one serial call (tested at every level in tests/batch_parallel.rs; the speed-up
+//! is measured in docs/performance.md, group `parallel_1m`). With `std`:
+//!
+//! ```
+//! use glam::Vec3;
+//! use phong::{DirectionalLight, LightColors, Material, Phong, Scene, SoaRgb, SoaVec3, Viewer};
+//!
+//! let sun = DirectionalLight::try_new(Vec3::ONE, LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE)?)?;
+//! let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+//! let material = Material::try_from_color(Vec3::new(0.8, 0.3, 0.2), 32.0)?;
+//! let model = Phong::default();
+//! let n = 10_000;
+//! let p: [Vec<f32>; 3] = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+//! let nn: [Vec<f32>; 3] = [(0..n).map(|i| (i as f32).sin()).collect(), vec![0.5; n], vec![1.0; n]];
+//! let (mut r, mut g, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+//!
+//! // One part per thread, cut at the same indices in every slice.
+//! let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
+//! let part = n.div_ceil(threads);
+//! std::thread::scope(|s| {
+//!     let outs = r.chunks_mut(part).zip(g.chunks_mut(part)).zip(b.chunks_mut(part));
+//!     for (k, ((r, g), b)) in outs.enumerate() {
+//!         let (lo, hi) = (k * part, (k * part + part).min(n));
+//!         let positions = SoaVec3::new(&p[0][lo..hi], &p[1][lo..hi], &p[2][lo..hi]);
+//!         let normals = SoaVec3::new(&nn[0][lo..hi], &nn[1][lo..hi], &nn[2][lo..hi]);
+//!         let (model, material, scene) = (&model, &material, &scene);
+//!         s.spawn(move || {
+//!             phong::shade_batch(model, material, scene, positions, normals, SoaRgb::new(r, g, b));
+//!         });
+//!     }
+//! });
+//! let one = phong::shade(&model, &material, &scene, Vec3::ZERO, Vec3::new(nn[0][7], 0.5, 1.0));
+//! assert!((r[7] - one.total().x).abs() < 1e-5);
+//! # Ok::<(), phong::PhongError>(())
+//! ```
 
 #[cfg(target_arch = "x86_64")]
 mod avx512;
