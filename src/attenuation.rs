@@ -243,8 +243,8 @@ impl Attenuation {
         })
     }
 
-    /// The Frostbite windowed form with radius `r` and a chosen `ε`, checked: both in
-    /// `[f32::MIN_POSITIVE, f32::MAX]`.
+    /// `saturate(1 − (d/r)⁴)² / max(d², ε²)` (Frostbite's windowed form) with a chosen `ε`,
+    /// checked: `r` and `ε` in `[f32::MIN_POSITIVE, f32::MAX]`; otherwise the error names the field.
     pub fn try_frostbite_with_min_distance(
         radius: f32,
         min_distance: f32,

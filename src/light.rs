@@ -460,7 +460,8 @@ impl SpotCone {
         }
     }
 
-    /// The same cone with spot exponent `e`.
+    /// The same cone with spot exponent `e` (`spot(c) = c^e` inside the cone). Unchecked here:
+    /// [`SpotLight::try_with_cone`] rejects a negative or non-finite `e`.
     #[must_use]
     pub fn with_exponent(self, exponent: f32) -> Self {
         SpotCone { exponent, ..self }

@@ -123,5 +123,5 @@ pub fn shade<M: ReflectionModel, L: LightSource>(
     position: Vec3,
     normal: Vec3,
 ) -> Terms {
-    Shader::new(model, material, scene).shade(position, normal)
+    Shader::for_one_point(model, material, scene).shade(position, normal)
 }

@@ -102,20 +102,38 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     #[must_use]
     #[inline]
     pub fn new(model: M, material: &Material, scene: &Scene<'a, L>) -> Self {
+        Self::with_bounds(model, material, scene, true)
+    }
+
+    /// [`new`](Self::new) for a single point ([`shade`](crate::shade)): without the pass over
+    /// the lights that bounds their sums, which only pays off over many points. Such a shader
+    /// always saturates (the bounds read `+∞`, so `Prepared::safe` is false).
+    #[inline]
+    pub(crate) fn for_one_point(model: M, material: &Material, scene: &Scene<'a, L>) -> Self {
+        Self::with_bounds(model, material, scene, false)
+    }
+
+    #[inline]
+    fn with_bounds(model: M, material: &Material, scene: &Scene<'a, L>, bound: bool) -> Self {
         let resolved = model.resolve();
         let viewer = match scene.viewer {
             Viewer::At(eye) => Viewer::At(eye),
             Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
         };
         let ambient_light = sanitize_colour(scene.ambient);
-        let mut bounds = [Vec3A::from(ambient_light), Vec3A::ZERO, Vec3A::ZERO];
-        for light in scene.lights {
-            let f = light.max_factor();
-            let c = light.colors();
-            bounds[0] += Vec3A::from(c.ambient()) * f;
-            bounds[1] += Vec3A::from(c.diffuse()) * f;
-            bounds[2] += Vec3A::from(c.specular()) * f;
-        }
+        let bounds = if bound {
+            let mut b = [Vec3A::from(ambient_light), Vec3A::ZERO, Vec3A::ZERO];
+            for light in scene.lights {
+                let f = light.max_factor();
+                let c = light.colors();
+                b[0] += Vec3A::from(c.ambient()) * f;
+                b[1] += Vec3A::from(c.diffuse()) * f;
+                b[2] += Vec3A::from(c.specular()) * f;
+            }
+            b
+        } else {
+            [Vec3A::INFINITY; 3]
+        };
         let mut shader = Shader {
             model,
             resolved,
