@@ -82,7 +82,7 @@ pub enum Attenuation {
 /// `1 + x`, 3 in `1 + x²` (each weighted by at most 1), 2 products. The product is capped at 1,
 /// the exact window's maximum: rounding near `d = 0` otherwise lifts it an ulp above 1 (for about
 /// 1.5 % of small `d/r`), and the factor would then exceed its value at `d = 0`.
-#[inline]
+#[inline(always)]
 fn window(d: f32, r: f32) -> f32 {
     if d < r {
         let x = d / r; // in [0, 1): finite because r > d ≥ 0
@@ -133,10 +133,107 @@ fn window_f64(d: f64, r: f64) -> f64 {
     }
 }
 
+/// Every [`Attenuation`] form as one formula, so a shading loop evaluates a falloff it does not
+/// know at compile time without branching on the form (a branch that, run for every lane of a
+/// vectorised loop, would stop the compiler vectorising it):
+///
+/// ```text
+/// dd     = max(d, min_d)
+/// factor = power · window(d, r) / max(c + dd·(l + q·dd), floor)      (the rational forms)
+///        = power · window(d, r) / dd / dd                            (the inverse-square forms)
+/// window(d, ∞) = 1
+/// ```
+///
+/// | form | `c, l, q` | `power` | `min_d` | `r` |
+/// |---|---|---|---|---|
+/// | `None` | 1, 0, 0 | 1 | 0 | ∞ |
+/// | `Polynomial` | its coefficients | 1 | 0 | ∞ |
+/// | `InverseSquare` | – | `P` | `max(ε, f32::MIN_POSITIVE)` | ∞ |
+/// | `Unreal` | 1, 0, 1 | 1 | 0 | `r` |
+/// | `Frostbite` | – | 1 | `max(ε, f32::MIN_POSITIVE)` | `r` |
+///
+/// These are [`Attenuation::factor`]'s own operations in its own order, so the result is the same,
+/// bit for bit, including the `f64` evaluation of an overflowing polynomial denominator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FlatAttenuation {
+    c: f32,
+    l: f32,
+    q: f32,
+    power: f32,
+    min_d: f32,
+    floor: f32,
+    radius: f32,
+    /// Divide by `dd` twice (the inverse-square forms) instead of by `max(den, floor)`.
+    twice: bool,
+    /// Evaluate an overflowing denominator in `f64` (the polynomial forms, as `factor` does).
+    wide: bool,
+}
+
+impl FlatAttenuation {
+    /// The factor at distance `d ≥ 0` (finite or `f32::MAX`, as the crate's lengths are).
+    #[inline(always)]
+    pub(crate) fn factor(&self, d: f32) -> f32 {
+        let d = math::clamp_or_lo(d, 0.0, math::MAX);
+        let dd = math::max_or(d, self.min_d);
+        let den = self.c + dd * (self.l + self.q * dd);
+        // The inverse-square forms divide twice by `dd`, as `factor` does: `dd²` underflows for
+        // `dd` below 1e-19 and overflows above 1.8e19, while `P/dd/dd` is still representable.
+        let (a, b) = if self.twice {
+            (dd, dd)
+        } else {
+            (math::max_or(den, self.floor), 1.0)
+        };
+        let f = if den < f32::INFINITY || !self.wide {
+            self.power * window(d, self.radius) / a / b
+        } else {
+            // As `polynomial_overflowed` (the polynomial forms: power 1, no window).
+            let (c, l, q, dd) = (self.c as f64, self.l as f64, self.q as f64, dd as f64);
+            let den = c + dd * (l + q * dd);
+            (1.0 / (den * (1.0 + 1.0 / (1u32 << 21) as f64))) as f32
+        };
+        math::clamp_or_lo(f, 0.0, math::MAX)
+    }
+}
+
 impl Attenuation {
     /// The smallest denominator the polynomial form divides by, so its factor never exceeds 1e4
     /// (the same cap as the inverse-square forms at `P = 1`, `ε = 0.01`).
     pub const MIN_DENOMINATOR: f32 = 1e-4;
+
+    /// This falloff as [`FlatAttenuation`]'s one formula.
+    #[inline]
+    pub(crate) fn flat(&self) -> FlatAttenuation {
+        let form = |c, l, q, power, min_d: f32, radius, twice| FlatAttenuation {
+            c,
+            l,
+            q,
+            power,
+            min_d,
+            floor: Self::MIN_DENOMINATOR,
+            radius,
+            twice,
+            wide: matches!(self, Attenuation::None | Attenuation::Polynomial { .. }),
+        };
+        let inf = f32::INFINITY;
+        let eps = |e: f32| e.max(f32::MIN_POSITIVE);
+        match *self {
+            Attenuation::None => form(1.0, 0.0, 0.0, 1.0, 0.0, inf, false),
+            Attenuation::Polynomial {
+                constant,
+                linear,
+                quadratic,
+            } => form(constant, linear, quadratic, 1.0, 0.0, inf, false),
+            Attenuation::InverseSquare {
+                power,
+                min_distance,
+            } => form(0.0, 0.0, 1.0, power, eps(min_distance), inf, true),
+            Attenuation::Unreal { radius } => form(1.0, 0.0, 1.0, 1.0, 0.0, radius, false),
+            Attenuation::Frostbite {
+                radius,
+                min_distance,
+            } => form(0.0, 0.0, 1.0, 1.0, eps(min_distance), radius, true),
+        }
+    }
 
     /// The default `ε` of the inverse-square forms: 0.01 (a centimetre when units are metres).
     pub const DEFAULT_MIN_DISTANCE: f32 = 0.01;
@@ -525,6 +622,41 @@ fn positive(field: &'static str, value: f32) -> Result<f32, PhongError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The flat form is `factor` itself, operation for operation, for every form and every
+    /// distance: near 0, around each radius and minimum distance, and out to `f32::MAX` (where the
+    /// polynomial denominator overflows and both take `f64`).
+    #[test]
+    fn flat_form_is_the_factor_bit_for_bit() {
+        let forms = [
+            Attenuation::None,
+            Attenuation::polynomial(1.0, 0.09, 0.032),
+            Attenuation::polynomial(0.0, 0.0, 2.0),
+            Attenuation::polynomial(1.0, f32::MAX, 2.0),
+            Attenuation::polynomial(0.0, 3.0, f32::MAX),
+            Attenuation::try_inverse_square(3.0).unwrap(),
+            Attenuation::try_inverse_square_with_min_distance(4.4e-26, 3.6e-23).unwrap(),
+            Attenuation::try_unreal(8.0).unwrap(),
+            Attenuation::try_unreal(5.6e-38).unwrap(),
+            Attenuation::try_unreal(f32::MAX).unwrap(),
+            Attenuation::try_frostbite(8.0).unwrap(),
+        ];
+        let mut ds = vec![
+            0.0f32, 1e-45, 1e-38, 1e-20, 0.01, 0.5, 1.0, 7.999, 8.0, 8.001, 1e19, 1e20,
+        ];
+        ds.extend([1e30, 1e38, f32::MAX]);
+        ds.extend((0..2000).map(|k| k as f32 * 0.005));
+        for a in forms {
+            let flat = a.flat();
+            for &d in &ds {
+                assert_eq!(
+                    flat.factor(d).to_bits(),
+                    a.factor(d).to_bits(),
+                    "{a:?} at d = {d}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn cull_radius_is_where_the_factor_crosses() {

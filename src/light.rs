@@ -6,10 +6,10 @@
 
 use glam::Vec3;
 
-use crate::attenuation::Attenuation;
+use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::error::{self, PhongError};
 use crate::math;
-use crate::normalize::direction_and_distance;
+use crate::normalize::{direction_and_distance, direction_and_distance_full};
 use crate::pow::lobe_pow;
 
 /// The three colours a light contributes: to the ambient, diffuse and specular terms.
@@ -251,6 +251,47 @@ pub trait LightSource {
     fn max_factor(&self) -> f32 {
         f32::INFINITY
     }
+
+    /// The light as [`FlatLight`]'s one formula, for [`Shader`](crate::Shader)'s one-light path;
+    /// `None` (the default, and every light outside this crate) keeps [`sample`](Self::sample).
+    #[doc(hidden)]
+    #[inline]
+    fn flat(&self) -> Option<FlatLight> {
+        None
+    }
+}
+
+/// A directional or point light with its falloff as one formula, so a shading loop evaluates it
+/// with no branch on its kind (see [`LightSource::flat`]). Only this crate builds one.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatLight {
+    /// A point light's position, or a directional light's unit direction.
+    pub(crate) origin: Vec3,
+    /// Whether `origin` is a position.
+    pub(crate) point: bool,
+    pub(crate) attenuation: FlatAttenuation,
+}
+
+impl FlatLight {
+    /// [`LightSource::sample`] by the one formula, with the full-range direction and distance
+    /// (no range test): the same direction and, for `None` and polynomial falloffs, the same
+    /// factor as `sample`, bit for bit (see [`FlatAttenuation`] for the others).
+    #[inline(always)]
+    pub(crate) fn sample(&self, p: Vec3) -> LightSample {
+        if self.point {
+            let (direction, d) = direction_and_distance_full(self.origin, p);
+            LightSample {
+                direction,
+                factor: self.attenuation.factor(d),
+            }
+        } else {
+            LightSample {
+                direction: self.origin,
+                factor: 1.0,
+            }
+        }
+    }
 }
 
 /// A light infinitely far away: one direction everywhere, no attenuation.
@@ -309,6 +350,14 @@ impl DirectionalLight {
 }
 
 impl LightSource for DirectionalLight {
+    #[inline]
+    fn flat(&self) -> Option<FlatLight> {
+        Some(FlatLight {
+            origin: self.direction,
+            point: false,
+            attenuation: Attenuation::None.flat(),
+        })
+    }
     #[inline]
     fn colors(&self) -> &LightColors {
         &self.colors
@@ -386,6 +435,14 @@ impl PointLight {
 }
 
 impl LightSource for PointLight {
+    #[inline]
+    fn flat(&self) -> Option<FlatLight> {
+        Some(FlatLight {
+            origin: self.position,
+            point: true,
+            attenuation: self.attenuation.flat(),
+        })
+    }
     #[inline]
     fn colors(&self) -> &LightColors {
         &self.colors
@@ -786,6 +843,14 @@ impl LightSource for Light {
             Light::Directional(l) => l.sample(p),
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
+        }
+    }
+    #[inline]
+    fn flat(&self) -> Option<FlatLight> {
+        match self {
+            Light::Directional(l) => l.flat(),
+            Light::Point(l) => l.flat(),
+            Light::Spot(l) => l.flat(),
         }
     }
 }

@@ -6,7 +6,7 @@
 //! failures. The functions here rescale by a power of two first, which is exact, so the answer is the
 //! correctly scaled direction for every finite input.
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::Vec3;
 
 use crate::math;
 
@@ -68,23 +68,85 @@ pub fn normalize_or_zero(v: Vec3) -> Vec3 {
     if in_common_range(l2) {
         return v * (1.0 / math::sqrt(l2));
     }
-    normalize_rare(v.into()).into()
+    full_range(v).0
 }
 
-/// The rare cases of [`normalize_or_zero`], kept out of line so the common path stays small
-/// enough to inline into shading loops.
+/// `(normalize_or_zero(v), length(v))` for any `v`, inline and without a branch or a call: the
+/// rare cases of the functions here, and the whole of [`normalize_full`].
 ///
-/// Takes and returns `Vec3A`, a SIMD type that crosses the call in a vector register: a 12-byte
-/// `Vec3` would cross it in integer registers and cost the hot path moves through memory.
-#[cold]
-#[inline(never)]
-fn normalize_rare(v: Vec3A) -> Vec3A {
-    let v = Vec3::from(v);
-    if !v.is_finite() || v == Vec3::ZERO {
-        return Vec3A::ZERO;
-    }
-    let s = rescaled(v);
-    (s * (1.0 / math::sqrt(s.length_squared()))).into()
+/// Scales `v` by the power of two `2^(127−e)` that brings its largest component (biased exponent
+/// `e`, clamped to `[0, 253]`) into `[1, 4)`. The scaling is exact, so the direction is the
+/// correctly scaled one for every finite input (and, where `v·v` neither overflows nor
+/// underflows, the same bits as `v · (1/√(v·v))`); the squared length lies in `[2⁻⁴⁴, 48)`.
+/// Zero, NaN and infinite components give `(0, 0)`.
+#[inline(always)]
+fn full_range(v: Vec3) -> (Vec3, f32) {
+    let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
+    // The largest magnitude, capped below 2^127 so its exponent is at most 253 (a NaN reads as
+    // the cap; `valid` below rejects it).
+    let m = math::min_or(math::max_or(math::max_or(ax, ay), az), BELOW_2_127);
+    let e_bits = m.to_bits() & 0x7f80_0000;
+    // 2^(127−e): the exponent field 254 − e.
+    let w = v * f32::from_bits(0x7f00_0000 - e_bits);
+    let w2 = w.length_squared();
+    // NaN fails both tests; a zero vector gives 0 and an infinite component +∞.
+    let valid = (w2 > 0.0) & (w2 < f32::INFINITY);
+    let root = math::sqrt(w2);
+    // Undo the scaling on the length: 2^(e−127), which is the subnormal 2^−127 when e = 0.
+    let unscale = if e_bits == 0 {
+        f32::from_bits(0x0040_0000)
+    } else {
+        f32::from_bits(e_bits)
+    };
+    let len = math::min_or(root * unscale, math::MAX);
+    let dir = w * (1.0 / root);
+    if valid { (dir, len) } else { (Vec3::ZERO, 0.0) }
+}
+
+/// The largest `f32` below `2^127` (biased exponent 253).
+const BELOW_2_127: f32 = f32::from_bits(0x7eff_ffff);
+
+/// The power of two `2^(127−e)` that brings the largest magnitude `m` of `v` (biased exponent
+/// `e`, capped at 253) into `[1, 2)` (into `[2⁻²², 1)` for a subnormal `m`, `e = 0`), and its
+/// inverse `2^(e−127)` (the subnormal `2⁻¹²⁷` for `e = 0`).
+#[inline(always)]
+fn scales(v: Vec3) -> (f32, f32) {
+    let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
+    let m = math::min_or(math::max_or(math::max_or(ax, ay), az), BELOW_2_127);
+    let e_bits = m.to_bits() & 0x7f80_0000;
+    let unscale = if e_bits == 0 {
+        f32::from_bits(0x0040_0000)
+    } else {
+        f32::from_bits(e_bits)
+    };
+    (f32::from_bits(0x7f00_0000 - e_bits), unscale)
+}
+
+/// [`normalize_or_zero`] of a *finite* `v` by the full-range formula alone: no range test, no
+/// branch and no call, and no test for non-finite input (the zero vector still gives zero).
+///
+/// The same answer (bit for bit where `v·v` neither overflows nor underflows) for more arithmetic
+/// on the common path: what a loop that the compiler vectorises across points wants, since there
+/// every branch is computed both ways.
+#[must_use]
+#[inline(always)]
+pub(crate) fn normalize_full(v: Vec3) -> Vec3 {
+    let (scale, _) = scales(v);
+    let w = v * scale;
+    // √(w·w) ≥ 2⁻²² for any non-zero finite v; the floor only keeps 0 · (1/0) out for v = 0.
+    w * (1.0 / math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE))
+}
+
+/// [`direction_and_distance`] of finite points by the full-range formula alone (see
+/// [`normalize_full`]): the same answer, bit for bit where `‖to − from‖²` neither overflows nor
+/// underflows.
+#[inline(always)]
+pub(crate) fn direction_and_distance_full(to: Vec3, from: Vec3) -> (Vec3, f32) {
+    let v = sub_saturating(to, from);
+    let (scale, unscale) = scales(v);
+    let w = v * scale;
+    let root = math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE);
+    (w * (1.0 / root), math::min_or(root * unscale, math::MAX))
 }
 
 /// `Some(v / ‖v‖)`, or `None` when `v` is zero or not finite. See [`normalize_or_zero`].
@@ -122,7 +184,7 @@ pub fn length(v: Vec3) -> f32 {
     length_rare(v)
 }
 
-/// The rare cases of [`length`], out of line like [`normalize_rare`].
+/// The rare cases of [`length`], out of line.
 #[cold]
 #[inline(never)]
 fn length_rare(v: Vec3) -> f32 {
@@ -147,7 +209,7 @@ fn length_rare(v: Vec3) -> f32 {
 ///
 /// Differences of finite points can overflow (e.g. `3e38 − (−3e38)`); the total paths use this so
 /// the direction stays finite. The direction of a saturated difference is approximate.
-#[inline]
+#[inline(always)]
 pub(crate) fn sub_saturating(a: Vec3, b: Vec3) -> Vec3 {
     let d = a - b;
     d.max(Vec3::splat(-math::MAX)).min(Vec3::splat(math::MAX))
@@ -168,8 +230,7 @@ pub(crate) fn direction_and_distance(to: Vec3, from: Vec3) -> (Vec3, f32) {
         let d = math::sqrt(l2);
         return (v * (1.0 / d), d);
     }
-    let r = direction_and_distance_rare(to.into(), from.into());
-    (r.truncate(), r.w)
+    full_range(sub_saturating(to, from))
 }
 
 /// `normalize_or_zero(to − from)` with the difference saturated as in [`direction_and_distance`].
@@ -180,17 +241,7 @@ pub(crate) fn direction_between(to: Vec3, from: Vec3) -> Vec3 {
     if in_common_range(l2) {
         return v * (1.0 / math::sqrt(l2));
     }
-    direction_and_distance_rare(to.into(), from.into()).truncate()
-}
-
-/// The rare cases of [`direction_and_distance`], out of line: the direction in `xyz` and the
-/// distance in `w` of one `Vec4`, which crosses the call in a vector register (see
-/// [`normalize_rare`]).
-#[cold]
-#[inline(never)]
-fn direction_and_distance_rare(to: Vec3A, from: Vec3A) -> Vec4 {
-    let v = sub_saturating(to.into(), from.into());
-    normalize_or_zero(v).extend(length(v))
+    full_range(sub_saturating(to, from)).0
 }
 
 #[cfg(test)]

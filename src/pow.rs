@@ -383,8 +383,51 @@ impl PowPlan {
 }
 
 /// `x^n` by repeated squaring (`x^0 = 1`).
+///
+/// A power of two `n = 2^k` (32, 64, …: the common shininesses) takes exactly `k` squarings
+/// behind four well-predicted tests, with no loop; the other exponents use the binary ladder. Both
+/// multiply in the same order, so the result is the same either way.
 #[inline(always)]
 pub(crate) fn pow_u32(x: f32, n: u32) -> f32 {
+    if n.is_power_of_two() {
+        return squarings(x, n.trailing_zeros());
+    }
+    pow_u32_ladder(x, n)
+}
+
+/// `x^(2^k)`: `k` squarings, unrolled by the bits of `k` (`k < 32`).
+#[inline(always)]
+fn squarings(x: f32, k: u32) -> f32 {
+    let mut y = x;
+    if k & 16 != 0 {
+        for _ in 0..16 {
+            y *= y;
+        }
+    }
+    if k & 8 != 0 {
+        for _ in 0..8 {
+            y *= y;
+        }
+    }
+    if k & 4 != 0 {
+        y *= y;
+        y *= y;
+        y *= y;
+        y *= y;
+    }
+    if k & 2 != 0 {
+        y *= y;
+        y *= y;
+    }
+    if k & 1 != 0 {
+        y *= y;
+    }
+    y
+}
+
+/// `x^n` by the binary ladder: one squaring per bit of `n`, one product per set bit.
+#[inline(always)]
+fn pow_u32_ladder(x: f32, n: u32) -> f32 {
     let mut e = n;
     let mut base = x;
     let mut acc = 1.0f32;
@@ -398,16 +441,83 @@ pub(crate) fn pow_u32(x: f32, n: u32) -> f32 {
     acc
 }
 
+/// `x^n` for `n < 2048` by a ladder of fixed length: eleven squarings, each bit of `n` selecting
+/// one product, in the order of [`pow_u32`] (so the same result, bit for bit).
+///
+/// No loop and no branch on `n`: a shading loop that evaluates it per point stays straight-line
+/// code, which the compiler can vectorise across points even when `n` changes per point.
+#[inline(always)]
+pub(crate) fn pow_u32_fixed(x: f32, n: u32) -> f32 {
+    let mut acc = 1.0f32;
+    let mut base = x;
+    let mut k = 0;
+    while k < 11 {
+        let times = acc * base;
+        acc = if (n >> k) & 1 == 1 { times } else { acc };
+        // No squaring past the top bit: each select has a single product on one side, which the
+        // code generator turns into a branch on `n` when `n` is the same for every point.
+        let square = base * base;
+        base = if n >> (k + 1) != 0 { square } else { base };
+        k += 1;
+    }
+    acc
+}
+
+/// [`PowStrategy::Auto`]'s `x^s` for `x ∈ [0, 1]` from [`auto_split`]'s `(n, f)`: `x^n` by
+/// squaring when `f = 0` (a whole `s ≤ 1024`), else the degree-7 polynomial's `x^f` (then
+/// `n = 0`). Bit for bit the `Squaring` or `Poly7` plan that `Auto` picks. One point at a time:
+/// the branch on `f` is taken the same way for every point of a material.
+#[inline(always)]
+pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
+    if f != 0.0 {
+        poly_pow(Poly::P7, x, f)
+    } else {
+        pow_u32(x, n)
+    }
+}
+
+/// [`auto_pow`] with the fixed-length ladder [`pow_u32_fixed`], for code the compiler vectorises
+/// across points (where the branch on `f` becomes a select of both forms). The same result, bit
+/// for bit.
+#[inline(always)]
+pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32) -> f32 {
+    if f != 0.0 {
+        poly_pow(Poly::P7, x, f)
+    } else {
+        pow_u32_fixed(x, n)
+    }
+}
+
+/// The `(n, f)` of [`auto_pow`] for a shininess `s ≥ 0` (NaN read as 0): what
+/// [`PowStrategy::Auto`] plans, squaring for a whole `s ≤ 1024` and the degree-7 polynomial
+/// otherwise.
+#[inline(always)]
+pub(crate) fn auto_split(s: f32) -> (u32, f32) {
+    let s = math::clamp_or_lo(s, 0.0, math::MAX);
+    let n = math::min_or(s, MAX_SQUARING) as u32;
+    if s <= MAX_SQUARING && s == n as f32 {
+        (n, 0.0)
+    } else {
+        (0, s)
+    }
+}
+
 /// `Σ c[k] t^k` by Horner's rule.
 #[inline(always)]
 fn horner<const N: usize>(t: f32, c: &[f32; N]) -> f32 {
-    let mut acc = 0.0f32;
-    let mut k = N;
-    while k > 0 {
-        k -= 1;
-        acc = acc * t + c[k];
+    // Estrin's scheme: pairs c[k] + c[k+1]·t, then combined with t², t⁴: depth log2 N.
+    let t2 = t * t;
+    let mut pairs = [0.0f32; 4];
+    let mut k = 0;
+    while k < N {
+        let hi = if k + 1 < N { c[k + 1] } else { 0.0 };
+        pairs[k / 2] = c[k] + hi * t;
+        k += 2;
     }
-    acc
+    let t4 = t2 * t2;
+    let lo = pairs[0] + pairs[1] * t2;
+    let hi = pairs[2] + pairs[3] * t2;
+    lo + hi * t4
 }
 
 /// `log2 x` for `x ∈ (0, 1]`, subnormals included; branch-free so it vectorises. `x = 1` gives 0
@@ -489,6 +599,52 @@ fn lobe_pow_squaring(x: f32, s: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The exponents and bases the ladder tests run over: every power of two, every `n < 2048`
+    /// that the fixed ladder covers, and bases across `[0, 1]`.
+    const BASES: [f32; 10] = [0.0, 1e-30, 0.05, 0.3, 0.5, 0.7071, 0.9, 0.999, 0.99999, 1.0];
+
+    /// The power-of-two shortcut multiplies in the ladder's order (the ladder's only product
+    /// into the accumulator is `1 · x^(2^k)`, which is exact), so the two agree bit for bit.
+    #[test]
+    fn power_of_two_shortcut_equals_the_ladder() {
+        for k in 0..32 {
+            let n = 1u32 << k;
+            for &x in &BASES {
+                let (a, b) = (pow_u32(x, n), pow_u32_ladder(x, n));
+                assert_eq!(a.to_bits(), b.to_bits(), "x = {x}, n = 2^{k}");
+            }
+        }
+        assert_eq!(pow_u32(0.9, 0), 1.0);
+        assert_eq!(pow_u32(0.5, 3), 0.125);
+    }
+
+    /// The fixed-length ladder is the same ladder with its steps past the top bit skipped.
+    #[test]
+    fn fixed_ladder_equals_the_ladder() {
+        for n in 0..2048 {
+            for &x in &BASES {
+                let (a, b) = (pow_u32_fixed(x, n), pow_u32(x, n));
+                assert_eq!(a.to_bits(), b.to_bits(), "x = {x}, n = {n}");
+            }
+        }
+    }
+
+    /// `Auto` point by point is bit for bit the plan `Auto` picks: `Squaring` or `Poly7`.
+    #[test]
+    fn auto_pow_is_the_auto_plan() {
+        for s in [
+            0.0f32, 1.0, 2.0, 20.5, 32.0, 64.0, 127.3, 1024.0, 1024.5, 1500.0, 4096.0,
+        ] {
+            let (n, f) = auto_split(s);
+            for &x in &BASES[1..] {
+                let want = PowStrategy::Auto.plan(s).eval(x);
+                for got in [auto_pow(x, n, f), auto_pow_fixed(x, n, f)] {
+                    assert_eq!(got.to_bits(), want.to_bits(), "x = {x}, s = {s}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn squaring_matches_exact_on_integers() {

@@ -3,13 +3,15 @@
 use glam::{Vec3, Vec3A};
 
 use crate::incidence::Incidence;
-use crate::light::{LightSource, sanitize_colour};
+use crate::light::{FlatLight, LightSource, sanitize_colour};
 use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
-use crate::normalize::direction_between;
+use crate::normalize::{direction_between, normalize_full, sub_saturating};
 use crate::normalize_or_zero;
-use crate::pow::{PowPlan, PowStrategy, pow_u32};
+use crate::pow::{
+    Poly, PowPlan, PowStrategy, auto_pow, auto_pow_fixed, auto_split, pow_u32, pow_u32_fixed,
+};
 use crate::resolved_model::{Lobe, ResolvedModel, SpecularPlan};
 use crate::shade::{Scene, Viewer};
 use crate::surface::Surface;
@@ -74,16 +76,28 @@ pub struct Shader<'a, M, L> {
     emission: Vec3,
     /// Upper bounds of the three light sums over every point: `Ia + Σ fmax·La`, `Σ fmax·Ld`,
     /// `Σ fmax·Ls` (`fmax` = [`LightSource::max_factor`]), saturated at `f32::MAX`.
-    bounds: [Vec3A; 3],
+    bounds: [Vec3; 3],
     prepared: Prepared,
+    /// The scene's one light, when it has exactly one and it is a directional or point light, in
+    /// the form [`Shader::one_light`] evaluates with no branch.
+    one: Option<OneLight>,
+}
+
+/// A scene's only light, reduced for [`Shader::one_light`].
+#[derive(Clone, Copy, Debug)]
+struct OneLight {
+    flat: FlatLight,
+    ambient: Vec3,
+    diffuse: Vec3,
+    specular: Vec3,
 }
 
 /// A surface with its specular constants, sanitised, ready for the per-light loop.
 #[derive(Clone, Copy, Debug)]
 struct Prepared {
-    ka: Vec3A,
-    kd: Vec3A,
-    ks: Vec3A,
+    ka: Vec3,
+    kd: Vec3,
+    ks: Vec3,
     s: f32,
     specular: SpecularPlan,
     /// Whether no sum, product or total of the equation can reach `f32::MAX` at any point for
@@ -113,7 +127,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         Self::with_bounds(model, material, scene, false)
     }
 
-    #[inline]
+    #[inline(always)]
     fn with_bounds(model: M, material: &Material, scene: &Scene<'a, L>, bound: bool) -> Self {
         let resolved = model.resolve();
         let viewer = match scene.viewer {
@@ -122,17 +136,17 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         };
         let ambient_light = sanitize_colour(scene.ambient);
         let bounds = if bound {
-            let mut b = [Vec3A::from(ambient_light), Vec3A::ZERO, Vec3A::ZERO];
+            let mut b = [ambient_light, Vec3::ZERO, Vec3::ZERO];
             for light in scene.lights {
                 let f = light.max_factor();
                 let c = light.colors();
-                b[0] += Vec3A::from(c.ambient()) * f;
-                b[1] += Vec3A::from(c.diffuse()) * f;
-                b[2] += Vec3A::from(c.specular()) * f;
+                b[0] += c.ambient() * f;
+                b[1] += c.diffuse() * f;
+                b[2] += c.specular() * f;
             }
             b
         } else {
-            [Vec3A::INFINITY; 3]
+            [Vec3::INFINITY; 3]
         };
         let mut shader = Shader {
             model,
@@ -141,11 +155,21 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             ambient_light,
             viewer,
             emission: material.emission(),
-            bounds: bounds.map(|b| b.min(Vec3A::splat(math::MAX))),
+            bounds: bounds.map(|b| b.min(Vec3::splat(math::MAX))),
+            // Only worth its preparation over many points (and `for_one_point` shades one).
+            one: match scene.lights {
+                [light] if bound => light.flat().map(|flat| OneLight {
+                    flat,
+                    ambient: light.colors().ambient(),
+                    diffuse: light.colors().diffuse(),
+                    specular: light.colors().specular(),
+                }),
+                _ => None,
+            },
             prepared: Prepared {
-                ka: Vec3A::ZERO,
-                kd: Vec3A::ZERO,
-                ks: Vec3A::ZERO,
+                ka: Vec3::ZERO,
+                kd: Vec3::ZERO,
+                ks: Vec3::ZERO,
                 s: 0.0,
                 specular: plan_for(None, 0.0),
                 safe: false,
@@ -168,10 +192,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// most 1, so no sum or product can then overflow, and the saturating `min`s are skipped. A
     /// product that overflows here is `+∞`, which fails the test: the check itself cannot
     /// misjudge. Models from outside the crate are never `safe`.
-    #[inline]
+    #[inline(always)]
     fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32) -> Prepared {
         let specular = plan_for(self.resolved, s);
-        let (ka, kd, ks) = (Vec3A::from(ka), Vec3A::from(kd), Vec3A::from(ks));
         let safe = self.resolved.is_some_and(|r| {
             // The sums themselves (before the reflectances scale them), then the total.
             let sums = [
@@ -179,7 +202,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 r.diffuse(1.0) * self.bounds[1],
                 specular.scale * self.bounds[2],
             ];
-            let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + Vec3A::from(self.emission);
+            let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + self.emission;
             let quarter = 0.25 * math::MAX;
             sums.iter().all(|x| x.max_element() < quarter) && most.max_element() < quarter
         });
@@ -229,7 +252,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// **Domain:** finite `position` and `normal` (any length). With only directional lights and an
     /// infinite viewer the position is not used: pass any finite point, e.g. `Vec3::ZERO`.
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn shade(&self, position: Vec3, normal: Vec3) -> Terms {
         self.shade_visible(position, normal, Unshadowed)
     }
@@ -260,7 +283,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// # Ok::<(), phong::PhongError>(())
     /// ```
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn shade_visible(
         &self,
         position: Vec3,
@@ -292,7 +315,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// # Ok::<(), phong::PhongError>(())
     /// ```
     #[must_use]
-    #[inline]
+    #[inline(always)]
     pub fn shade_surface(
         &self,
         position: Vec3,
@@ -362,6 +385,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         normal: Vec3,
         visibility: impl Visibility,
     ) -> Terms {
+        if let (Some(one), Some(r)) = (self.one, self.resolved) {
+            return self.one_light(r, surface, one, position, normal, visibility);
+        }
         let n = normalize_or_zero(normal);
         let v = self.view_direction(position);
         // One loop per lobe, chosen once per point: each stays small enough to keep its values in
@@ -374,6 +400,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             // The pow plan is chosen here too, so the loop runs the plan's code inline and calls
             // nothing: a call inside it would force every live value out of the vector registers.
             Some(r) => match surface.specular.plan {
+                // `Auto`'s plan (see `plan_for`).
+                PowPlan::Split {
+                    n,
+                    frac,
+                    poly: Poly::P7,
+                } => self.lobe_loop(r, surface, pt, visibility, move |x| auto_pow(x, n, frac)),
                 PowPlan::Squaring { n } => {
                     self.lobe_loop(r, surface, pt, visibility, move |x| pow_u32(x, n))
                 }
@@ -385,20 +417,116 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             },
             None => self.custom_loop(surface, pt, visibility),
         };
+        let (ka, kd, ks) = (
+            Vec3A::from(surface.ka),
+            Vec3A::from(surface.kd),
+            Vec3A::from(surface.ks),
+        );
         if surface.safe {
             // Nothing can reach f32::MAX (see `prepare`): the products as they are.
             return Terms {
-                ambient: (surface.ka * ambient).into(),
-                diffuse: (surface.kd * diffuse).into(),
-                specular: (surface.ks * specular).into(),
+                ambient: (ka * ambient).into(),
+                diffuse: (kd * diffuse).into(),
+                specular: (ks * specular).into(),
                 emission: self.emission,
             };
         }
         let sat = Vec3A::splat(math::MAX);
         Terms {
-            ambient: (surface.ka * ambient.min(sat)).min(sat).into(),
-            diffuse: (surface.kd * diffuse.min(sat)).min(sat).into(),
-            specular: (surface.ks * specular.min(sat)).min(sat).into(),
+            ambient: (ka * ambient.min(sat)).min(sat).into(),
+            diffuse: (kd * diffuse.min(sat)).min(sat).into(),
+            specular: (ks * specular.min(sat)).min(sat).into(),
+            emission: self.emission,
+        }
+    }
+
+    /// The whole equation for a scene with one directional or point light and a crate model, as
+    /// straight-line code: no loop, no call, and no branch on the data, only on what is the same
+    /// for every point (the lobe, the pow plan, the viewer's kind), so a caller's loop over points
+    /// that inlines it can be vectorised by the compiler (as it vectorises hand-written shading
+    /// code). Every rare case is a select: the normal, the view direction and the direction to the
+    /// light by the full-range formula (no range test), an overflowing attenuation denominator in
+    /// `f64`, each missing direction masked.
+    ///
+    /// The same answer as the general path (the light loop), bit for bit, except for falloffs
+    /// other than none and polynomial, whose factor may differ in the last place or two (see
+    /// `FlatAttenuation`).
+    #[inline(always)]
+    fn one_light(
+        &self,
+        r: ResolvedModel,
+        surface: &Prepared,
+        one: OneLight,
+        position: Vec3,
+        normal: Vec3,
+        mut visibility: impl Visibility,
+    ) -> Terms {
+        let blinn = M::HAS_SPECULAR && r.lobe == Lobe::Blinn;
+        let phong = M::HAS_SPECULAR && r.lobe == Lobe::Phong;
+        let n = normalize_full(normal);
+        let v = match self.viewer {
+            Viewer::At(eye) => normalize_full(sub_saturating(eye, position)),
+            Viewer::Infinite(dir) => dir,
+        };
+        let sample = one.flat.sample(position);
+        let (l, f) = (sample.direction, sample.factor);
+        let vis = visibility.visibility(0);
+        debug_assert!(
+            (0.0..=1.0).contains(&vis),
+            "visibility of light 0 must lie in [0, 1], got {vis}"
+        );
+        let fv = f * math::clamp_or_lo(vis, 0.0, 1.0);
+        let n_dot_l = n.dot(l);
+        let wd = r.diffuse(n_dot_l);
+        // A missing direction (zero vector) means no highlight: Phong's base needs the mask for
+        // a zero N only (a zero L or V gives R·V = 0), Blinn-Phong's for all three.
+        let ws = if phong || blinn {
+            let (base, present) = if blinn {
+                let present = n != Vec3::ZERO && v != Vec3::ZERO && l != Vec3::ZERO;
+                (n_dot_h_squared(n, l, v), present)
+            } else {
+                let base = ResolvedModel::phong_base(n_dot_l, n.dot(v), l.dot(v));
+                (base, n != Vec3::ZERO)
+            };
+            let p = match surface.specular.plan {
+                PowPlan::Split {
+                    n: whole,
+                    frac,
+                    poly: Poly::P7,
+                } => lobe_power(base, &|x| auto_pow_fixed(x, whole, frac)),
+                PowPlan::Squaring { n: whole } => lobe_power(base, &|x| pow_u32_fixed(x, whole)),
+                PowPlan::Exact { s } => lobe_power(base, &|x| math::powf(x, s)),
+                plan => lobe_power(base, &|x| plan.eval(x)),
+            };
+            let ws = surface.specular.scale * r.gate(n_dot_l) * p;
+            if present { ws } else { 0.0 }
+        } else {
+            0.0
+        };
+        let ambient = self.ambient_light + one.ambient * f;
+        let diffuse = one.diffuse * math::min_or(fv * wd, math::MAX);
+        let specular = one.specular * math::min_or(fv * ws, math::MAX);
+        let (ka, kd, ks) = (surface.ka, surface.kd, surface.ks);
+        // Saturate unless nothing can reach f32::MAX (see `prepare`): one bound for both cases,
+        // where two returns would both be computed in a vectorised loop. The sums are finite or
+        // +∞ and never NaN, so `min` with +∞ is the identity.
+        let sat = if surface.safe {
+            f32::INFINITY
+        } else {
+            math::MAX
+        };
+        // Per component with the machine's `min` (`Vec3::min` would add IEEE minNum's NaN test).
+        let min = |v: Vec3| {
+            Vec3::new(
+                math::min_or(v.x, sat),
+                math::min_or(v.y, sat),
+                math::min_or(v.z, sat),
+            )
+        };
+        Terms {
+            ambient: min(ka * min(ambient)),
+            diffuse: min(kd * min(diffuse)),
+            specular: min(ks * min(specular)),
             emission: self.emission,
         }
     }
@@ -604,9 +732,10 @@ fn n_dot_h_squared(n: Vec3, l: Vec3, v: Vec3) -> f32 {
 #[inline(always)]
 fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
     match resolved {
-        // Point by point, `powf` is cheaper than the polynomials (measured: docs/performance.md),
-        // so `Auto` takes squaring for a whole exponent and `powf` for any other here. Decided
-        // inline, without `at_shininess`'s general plan: `shade_surface` runs it per point.
+        // `Auto`: squaring for a whole exponent, the degree-7 polynomial otherwise (its meaning
+        // everywhere in the crate), as one `Split` plan whose evaluation has no branch on the
+        // shininess. Decided inline, without `at_shininess`'s general plan: `shade_surface` runs
+        // it per point.
         Some(r) if r.pow == PowStrategy::Auto => {
             let s = math::clamp_or_lo(s, 0.0, math::MAX);
             let (scale, e) = match r.lobe {
@@ -614,12 +743,15 @@ fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
                 Lobe::Phong => (r.normalization.phong_factor(s), s),
                 Lobe::Blinn => (r.normalization.blinn_factor(s), 0.5 * s),
             };
-            let plan = if e <= 1024.0 && e == (e as u32) as f32 {
-                PowPlan::Squaring { n: e as u32 }
-            } else {
-                PowPlan::Exact { s: e }
-            };
-            SpecularPlan { scale, plan }
+            let (n, frac) = auto_split(e);
+            SpecularPlan {
+                scale,
+                plan: PowPlan::Split {
+                    n,
+                    frac,
+                    poly: Poly::P7,
+                },
+            }
         }
         Some(r) => r.at_shininess(s),
         None => SpecularPlan {

@@ -113,6 +113,82 @@ fn shade_is_the_prepared_shader_and_full_visibility_changes_nothing() {
     }
 }
 
+/// A scene with one directional or point light takes the straight-line one-light path (written so
+/// the compiler can vectorise a loop over points); `phong::shade` takes the general light loop.
+/// They are the same computation: every model, falloff, viewer, visibility and per-point surface
+/// gives the same bits.
+#[test]
+fn the_one_light_path_is_the_light_loop_bit_for_bit() {
+    let colors =
+        LightColors::try_new(Vec3::splat(0.1), Vec3::new(1.0, 0.8, 0.6), Vec3::splat(0.7)).unwrap();
+    let at = Vec3::new(2.0, 3.0, 1.0);
+    let mut singles: Vec<Light> = [
+        Attenuation::None,
+        Attenuation::try_polynomial(1.0, 0.09, 0.032).unwrap(),
+        Attenuation::try_inverse_square(3.0).unwrap(),
+        Attenuation::try_unreal(4.0).unwrap(),
+        Attenuation::try_frostbite(4.0).unwrap(),
+    ]
+    .into_iter()
+    .map(|a| PointLight::try_new(at, a, colors).unwrap().into())
+    .collect();
+    singles.push(
+        DirectionalLight::try_new(Vec3::new(-1.0, 2.0, 0.5), colors)
+            .unwrap()
+            .into(),
+    );
+    let m = material();
+    let texel = Surface::textured(Vec3::new(0.5, 0.25, 0.1), Vec3::splat(0.4), 37.5);
+    for light in singles {
+        for viewer in [
+            Viewer::At(Vec3::new(0.0, 1.0, 5.0)),
+            Viewer::Infinite(Vec3::new(0.3, 0.2, 1.0)),
+        ] {
+            let scene = Scene {
+                lights: core::slice::from_ref(&light),
+                ambient: Vec3::splat(0.03),
+                viewer,
+            };
+            for model in models() {
+                let shader = Shader::new(model, &m, &scene);
+                for (p, n) in points()
+                    .into_iter()
+                    .chain([(at, Vec3::Z), (Vec3::ZERO, Vec3::ZERO)])
+                {
+                    let what = format!("{model:?} {light:?} {viewer:?} at {p}, {n}");
+                    assert_eq!(
+                        shader.shade(p, n),
+                        phong::shade(&model, &m, &scene, p, n),
+                        "{what}"
+                    );
+                    // The general loop again, through a scene of two lights whose second adds 0.
+                    let dark =
+                        PointLight::try_new(at, Attenuation::None, LightColors::BLACK).unwrap();
+                    let two = [light, dark.into()];
+                    let general = Shader::new(
+                        model,
+                        &m,
+                        &Scene {
+                            lights: &two,
+                            ..scene
+                        },
+                    );
+                    assert_eq!(
+                        shader.shade_visible(p, n, [0.25]),
+                        general.shade_visible(p, n, [0.25, 1.0]),
+                        "{what}"
+                    );
+                    assert_eq!(
+                        shader.shade_surface(p, n, &texel, [0.5]),
+                        general.shade_surface(p, n, &texel, [0.5, 1.0]),
+                        "{what}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_shadowed_light_keeps_its_ambient_part_only() {
     let (lights, m) = (lights(), material());
