@@ -140,15 +140,37 @@ fn scalar_exact(kind: Kind, s: f32, p: &[Vec3], n: &[Vec3]) -> Vec<Vec3> {
     let m = Material::try_new(KA, KD, KS, s).unwrap();
     p.iter()
         .zip(n)
-        .map(|(&p, &n)| match kind {
-            Kind::Phong => phong::shade(&Phong::default(), &m, &scene, p, n).total(),
-            Kind::Blinn => phong::shade(&BlinnPhong::default(), &m, &scene, p, n).total(),
+        .map(|(&p, &n)| {
+            let pow = PowStrategy::Exact;
+            match kind {
+                Kind::Phong => phong::shade(
+                    &Phong {
+                        pow,
+                        ..Phong::default()
+                    },
+                    &m,
+                    &scene,
+                    p,
+                    n,
+                ),
+                Kind::Blinn => phong::shade(
+                    &BlinnPhong {
+                        pow,
+                        ..BlinnPhong::default()
+                    },
+                    &m,
+                    &scene,
+                    p,
+                    n,
+                ),
+            }
+            .total()
         })
         .collect()
 }
 
 /// The prepared per-point path (`Shader`) with `PowStrategy::Auto`: squaring for a whole exponent,
-/// `powf` otherwise.
+/// `Poly7` otherwise.
 fn scalar_auto(kind: Kind, s: f32, p: &[Vec3], n: &[Vec3]) -> Vec<Vec3> {
     let lights = [scene_light()];
     let scene = Scene {

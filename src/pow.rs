@@ -124,10 +124,10 @@ pub enum PowStrategy {
     /// the whole power by [`Poly7`](Self::Poly7).
     SplitPoly5,
     /// The default: the cheapest strategy that keeps 8-bit sRGB output as exact as `powf`, chosen
-    /// per exponent. In the batch kernels that is [`PowStrategy::cheapest_for_8bit`] (squaring for
-    /// a whole exponent, [`Poly7`](Self::Poly7) otherwise); point by point ([`Shader`] and
-    /// [`shade`]) it is squaring for a whole exponent and `powf` otherwise, since there a single
-    /// `powf` costs less than the degree-7 polynomials. The error is the chosen strategy's.
+    /// per exponent: [`PowStrategy::cheapest_for_8bit`], squaring for a whole exponent up to 1024
+    /// and [`Poly7`](Self::Poly7) otherwise. The same everywhere (batch kernels, [`Shader`],
+    /// [`shade`]), bit for bit; no `powf` call, so a loop over points stays vectorisable. The
+    /// error is the chosen strategy's.
     ///
     /// [`Shader`]: crate::Shader
     /// [`shade`]: crate::shade()
@@ -494,8 +494,12 @@ pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32) -> f32 {
 #[inline(always)]
 pub(crate) fn auto_split(s: f32) -> (u32, f32) {
     let s = math::clamp_or_lo(s, 0.0, math::MAX);
-    let n = math::min_or(s, MAX_SQUARING) as u32;
-    if s <= MAX_SQUARING && s == n as f32 {
+    // The nearest integer by the 1.5·2^23 trick (exact below 2^22): a float-to-integer `as`
+    // saturates, which costs a dozen instructions per lane where a loop is vectorised. `s` is
+    // whole exactly when it equals its nearest integer.
+    let big = math::min_or(s, MAX_SQUARING) + 12_582_912.0;
+    let n = big.to_bits().wrapping_sub(0x4b40_0000);
+    if s <= MAX_SQUARING && s == big - 12_582_912.0 {
         (n, 0.0)
     } else {
         (0, s)

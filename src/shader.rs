@@ -195,17 +195,20 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     #[inline(always)]
     fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32) -> Prepared {
         let specular = plan_for(self.resolved, s);
-        let safe = self.resolved.is_some_and(|r| {
-            // The sums themselves (before the reflectances scale them), then the total.
-            let sums = [
-                self.bounds[0],
-                r.diffuse(1.0) * self.bounds[1],
-                specular.scale * self.bounds[2],
-            ];
-            let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + self.emission;
-            let quarter = 0.25 * math::MAX;
-            sums.iter().all(|x| x.max_element() < quarter) && most.max_element() < quarter
-        });
+        // The one-light path saturates with one `min` per channel either way (see `one_light`):
+        // it needs no test, and a per-point surface would pay for it at every point.
+        let safe = self.one.is_none()
+            && self.resolved.is_some_and(|r| {
+                // The sums themselves (before the reflectances scale them), then the total.
+                let sums = [
+                    self.bounds[0],
+                    r.diffuse(1.0) * self.bounds[1],
+                    specular.scale * self.bounds[2],
+                ];
+                let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + self.emission;
+                let quarter = 0.25 * math::MAX;
+                sums.iter().all(|x| x.max_element() < quarter) && most.max_element() < quarter
+            });
         Prepared {
             ka,
             kd,
@@ -507,20 +510,15 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let diffuse = one.diffuse * math::min_or(fv * wd, math::MAX);
         let specular = one.specular * math::min_or(fv * ws, math::MAX);
         let (ka, kd, ks) = (surface.ka, surface.kd, surface.ks);
-        // Saturate unless nothing can reach f32::MAX (see `prepare`): one bound for both cases,
-        // where two returns would both be computed in a vectorised loop. The sums are finite or
-        // +∞ and never NaN, so `min` with +∞ is the identity.
-        let sat = if surface.safe {
-            f32::INFINITY
-        } else {
-            math::MAX
-        };
+        // Saturated always: in a vectorised loop the unsaturated return of the light loop's
+        // `safe` case would be computed beside this one, not instead of it, and `min` leaves
+        // every value below f32::MAX as it is, so the bits are the same.
         // Per component with the machine's `min` (`Vec3::min` would add IEEE minNum's NaN test).
         let min = |v: Vec3| {
             Vec3::new(
-                math::min_or(v.x, sat),
-                math::min_or(v.y, sat),
-                math::min_or(v.z, sat),
+                math::min_or(v.x, math::MAX),
+                math::min_or(v.y, math::MAX),
+                math::min_or(v.z, math::MAX),
             )
         };
         Terms {
