@@ -476,8 +476,11 @@ fn main() {
         "\nMillion points per second. `batch` is shininess 32 (`PowStrategy::Auto` → squaring), \
          `batch_frac` 20.5 (`Auto` → {:?} for Phong's exponent 20.5, {:?} for Blinn's 10.25). \
          `scalar` is the per-point API of the README: a `Shader` prepared once with the model's \
-         defaults (`PowStrategy::Auto`: squaring for s = 32), then `shade(p, n).total()` per point; `shade` is the \
-         free function per point, which prepares on every call.\n",
+         defaults (`PowStrategy::Auto`: squaring for s = 32), then `shade(p, n).total()` per point, \
+         with the scene built around its one light where the points are shaded, as the quick \
+         start does (the compiler then sees one light, as it does in `naive_glam`, whose light is \
+         written into its code; the light's values reach both at run time); `shade` is the free \
+         function per point, which prepares on every call and takes the light loop.\n",
         PowStrategy::cheapest_for_8bit(20.5),
         PowStrategy::cheapest_for_8bit(10.25)
     );
@@ -565,25 +568,25 @@ fn main() {
         md,
         "\nWhere a target is missed, the causes found while tuning (perf profiles on this \
          machine):\n\n\
-         - **`scalar` against `naive_glam`: the compiler vectorises the baseline, not a \
-         per-point API.** `naive_glam` is eight lines with its light, material and exponent \
-         compile-time constants; LLVM vectorises its loop four points at a time (`mulps`, \
-         `sqrtps` and `divps` across points, four scalar `powf` calls; see its disassembly in \
-         the bench binary). A per-point API cannot be vectorised across the caller's points \
-         while the scene is data: a slice of lights is an inner loop, and the light kinds, the \
-         viewer, the pow plan and the rare-input paths (zero, huge, subnormal vectors) are \
-         run-time choices. The prepared `Shader` is what a scalar path can be: the model \
-         resolved once, one loop per lobe and pow plan, one range test per normalisation with \
-         the rare path out of line, selects for the degenerate cases, sums in SIMD registers, \
-         and no saturation where bounds computed once show that nothing can overflow. Counted \
-         with callgrind it executes about 290 instructions per point for the Phong group (about \
-         30 of them the five squarings of `s = 32`), with three square roots and four \
-         divisions; the baseline does the same work four points per instruction. Where the hand-written code is scalar too (a ray tracer's hits under \
-         several lights, `raytrace` above) the per-point API is close to its speed; throughput over \
-         many points is what the batch API is for.\n\
-         - **`fragment`**: the hand-written fragment loop has one light and no inner loop, so it \
-         is vectorised like `naive_glam`; a non-integer shininess also makes both sides call \
-         `powf` per point, and in the scalar path that call spills every live value.\n\
+         - **`scalar` against `naive_glam`.** Both loops are vectorised by LLVM, four points per \
+         instruction (`mulps`, `sqrtps`, `divps` across points; `naive_glam` adds four scalar \
+         `powf` calls): the one-light `Shader` path is straight-line code with no call, loop or \
+         data branch (see `Shader`'s docs). What remains is work the baseline does not do, each \
+         item measured on this machine by taking it out of a probe loop: the exponent's plan is \
+         a run-time value (the material's shininess), so the vectorised loop evaluates both \
+         `Auto` forms, squaring and the `Poly7` polynomial, and selects (about 20% of the \
+         time); full-range normalisation by power-of-two scaling, where the baseline's \
+         `normalize` fails on huge and tiny vectors (about 15%); the saturation, the masks for \
+         missing directions and the `f64` evaluation of an overflowing attenuation (a few % \
+         each). The path is latency-bound: its chain per point is about twice the baseline's, \
+         and Estrin's scheme for the polynomials (shorter chains) was worth about 15%. A loop \
+         the compiler cannot see into (a scene passed in, several lights) is scalar: that is \
+         `raytrace` above, against scalar hand-written code.\n\
+         - **`fragment`**: a per-point shininess makes the exponent's plan a per-lane value, so \
+         besides both `Auto` forms the squaring ladder runs all eleven steps with a select each \
+         (about 20%), and the windowed-attenuation form, kept bit for bit `Attenuation::factor`, \
+         costs two divisions even for a polynomial light (about 10%). The hand-written loop \
+         calls `powf` once per point and has neither.\n\
          - **`batch_frac`** needs `Poly7` (degree 7 `log2`, degree 5 `exp2`) to stay as 8-bit \
          exact as `powf`; every cheaper strategy fails that criterion (table below), and Poly7's \
          two dependent polynomial chains cost about half as much again as the rest of the \

@@ -48,6 +48,17 @@ use crate::visibility::{Unshadowed, Visibility};
 /// Cheap to build (a few dozen instructions, no allocation): a ray tracer whose viewer changes with
 /// every ray builds one per hit.
 ///
+/// **Loops the compiler can vectorise.** With one [`DirectionalLight`](crate::DirectionalLight)
+/// or [`PointLight`](crate::PointLight) (or a [`Light`](crate::Light) holding one) and one of the
+/// crate's models, a point's code has no loop, no call and no branch on the data: rare inputs are
+/// selects, not fallbacks. So a loop over points that builds its scene where it shades (the light
+/// count is then visible to the compiler, as in the example above) is vectorised by LLVM like
+/// hand-written shading code, four points per instruction on any x86-64. Two or more lights, a
+/// [`SpotLight`](crate::SpotLight), a light or model from outside the crate, or a scene the
+/// compiler cannot see into take the light loop, one point at a time. Both give the same result
+/// (bit for bit wherever no squared length under- or overflows `f32`). docs/performance.md measures
+/// both shapes.
+///
 /// ```
 /// use glam::{Vec3, Vec3A};
 /// use phong::{Attenuation, BlinnPhong, LightColors, Material, PointLight, Scene, Shader, Viewer};
