@@ -21,23 +21,9 @@ use phong::{
     SoaVec3, SpecularGate, SpotLight, Viewer,
 };
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, a: f32, b: f32) -> f32 {
-        a + (b - a) * self.next()
-    }
-    fn vec(&mut self, a: f32, b: f32) -> Vec3 {
-        Vec3::new(self.range(a, b), self.range(a, b), self.range(a, b))
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// Positions and normals in array-of-structs form, converted to SoA for each call.
 struct Batch {
@@ -123,7 +109,12 @@ where
 }
 
 fn colors(rng: &mut Rng) -> LightColors {
-    LightColors::try_new(rng.vec(0.0, 0.3), rng.vec(0.0, 1.0), rng.vec(0.0, 1.0)).unwrap()
+    LightColors::try_new(
+        rng.vec3_in(0.0, 0.3),
+        rng.vec3_in(0.0, 1.0),
+        rng.vec3_in(0.0, 1.0),
+    )
+    .unwrap()
 }
 
 fn point_light(rng: &mut Rng, at: Vec3) -> PointLight {
@@ -137,9 +128,9 @@ fn point_light(rng: &mut Rng, at: Vec3) -> PointLight {
 
 /// Random points, with sizes that are not multiples of 16 so the tail is covered.
 fn random_batch(rng: &mut Rng, len: usize) -> Batch {
-    let p = (0..len).map(|_| rng.vec(-3.0, 3.0)).collect();
+    let p = (0..len).map(|_| rng.vec3_in(-3.0, 3.0)).collect();
     let n = (0..len)
-        .map(|_| rng.vec(-1.0, 1.0) * rng.range(0.01, 100.0))
+        .map(|_| rng.vec3_in(-1.0, 1.0) * rng.range_f32(0.01, 100.0))
         .collect();
     Batch { p, n }
 }
@@ -153,30 +144,30 @@ fn adversarial_batch(rng: &mut Rng, light: Vec3, eye: Vec3) -> Batch {
         n.push(b);
     };
     for _ in 0..8 {
-        let q = rng.vec(-2.0, 2.0);
+        let q = rng.vec3_in(-2.0, 2.0);
         push(q, Vec3::ZERO); // zero normal
-        push(light, rng.vec(-1.0, 1.0)); // light at the point
-        push(eye, rng.vec(-1.0, 1.0)); // viewer at the point
+        push(light, rng.vec3_in(-1.0, 1.0)); // light at the point
+        push(eye, rng.vec3_in(-1.0, 1.0)); // viewer at the point
         // Grazing: the normal perpendicular to L.
         let l = (light - q).normalize();
         let t = l.any_orthonormal_vector();
         push(q, t);
         push(q, t + l * 1e-7);
         // Huge and tiny coordinates and normals.
-        push(q * 1e20, rng.vec(-1.0, 1.0));
-        push(q * 3e38, rng.vec(-1.0, 1.0));
-        push(q, rng.vec(-1.0, 1.0) * 1e-20);
-        push(q, rng.vec(-1.0, 1.0) * 1e-40);
-        push(q, rng.vec(-1.0, 1.0) * 1e25);
-        push(q * 1e-30, rng.vec(-1.0, 1.0));
+        push(q * 1e20, rng.vec3_in(-1.0, 1.0));
+        push(q * 3e38, rng.vec3_in(-1.0, 1.0));
+        push(q, rng.vec3_in(-1.0, 1.0) * 1e-20);
+        push(q, rng.vec3_in(-1.0, 1.0) * 1e-40);
+        push(q, rng.vec3_in(-1.0, 1.0) * 1e25);
+        push(q * 1e-30, rng.vec3_in(-1.0, 1.0));
         // Ordinary neighbours in the same chunk.
-        push(q, rng.vec(-1.0, 1.0));
+        push(q, rng.vec3_in(-1.0, 1.0));
     }
     // L = −V: points on the segment between the light and the eye.
     for k in 1..20 {
         let t = k as f32 / 20.0;
         let q = light + (eye - light) * t;
-        push(q, rng.vec(-1.0, 1.0));
+        push(q, rng.vec3_in(-1.0, 1.0));
     }
     Batch { p, n }
 }
@@ -223,7 +214,7 @@ fn models(pow: PowStrategy) -> Vec<(String, Model)> {
 
 #[test]
 fn every_level_agrees_with_scalar_on_random_input() {
-    let mut rng = Rng(1);
+    let mut rng = Rng::new(1);
     let b = random_batch(&mut rng, 16 * 20 + 7);
     let lights = [
         point_light(&mut rng, Vec3::new(1.2, 1.0, 2.0)),
@@ -236,10 +227,15 @@ fn every_level_agrees_with_scalar_on_random_input() {
     };
     for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
         for s in [0.0f32, 0.5, 1.0, 20.5, 32.0, 128.0, 1500.0] {
-            let m = Material::try_new(rng.vec(0.0, 1.0), rng.vec(0.0, 1.0), rng.vec(0.0, 1.0), s)
-                .unwrap()
-                .try_with_emission(Vec3::splat(0.01))
-                .unwrap();
+            let m = Material::try_new(
+                rng.vec3_in(0.0, 1.0),
+                rng.vec3_in(0.0, 1.0),
+                rng.vec3_in(0.0, 1.0),
+                s,
+            )
+            .unwrap()
+            .try_with_emission(Vec3::splat(0.01))
+            .unwrap();
             for (name, model) in models(pow) {
                 check(&format!("{name} s={s}"), &model, &m, &scene, &b);
             }
@@ -249,7 +245,7 @@ fn every_level_agrees_with_scalar_on_random_input() {
 
 #[test]
 fn concrete_model_types_match_the_enum() {
-    let mut rng = Rng(2);
+    let mut rng = Rng::new(2);
     let b = random_batch(&mut rng, 100);
     let lights = [point_light(&mut rng, Vec3::new(0.0, 2.0, 1.0))];
     let scene = Scene {
@@ -295,7 +291,7 @@ fn concrete_model_types_match_the_enum() {
 
 #[test]
 fn every_level_agrees_with_scalar_on_adversarial_input() {
-    let mut rng = Rng(3);
+    let mut rng = Rng::new(3);
     let light_at = Vec3::new(1.0, 1.0, 1.0);
     let eye = Vec3::new(-1.0, -1.0, 2.0);
     let b = adversarial_batch(&mut rng, light_at, eye);
@@ -315,7 +311,7 @@ fn every_level_agrees_with_scalar_on_adversarial_input() {
 
 #[test]
 fn degenerate_points_have_the_documented_results() {
-    let mut rng = Rng(4);
+    let mut rng = Rng::new(4);
     let light_at = Vec3::new(0.0, 2.0, 0.0);
     let eye = Vec3::new(0.0, 0.0, 3.0);
     let lights = [point_light(&mut rng, light_at)];
@@ -394,7 +390,7 @@ fn degenerate_points_have_the_documented_results() {
 
 #[test]
 fn every_light_kind_and_viewer() {
-    let mut rng = Rng(5);
+    let mut rng = Rng::new(5);
     let b = random_batch(&mut rng, 16 * 3 + 5);
     let m = Material::try_new(Vec3::splat(0.2), Vec3::new(0.7, 0.5, 0.3), Vec3::ONE, 32.0).unwrap();
     let pow = PowStrategy::Auto;
@@ -523,10 +519,10 @@ fn unsupported_levels_are_errors_and_detect_is_supported() {
 #[test]
 fn auto_choice_is_8bit_exact() {
     let len = 1 << 19;
-    let mut rng = Rng(6);
+    let mut rng = Rng::new(6);
     let b = Batch {
-        p: (0..len).map(|_| rng.vec(-2.0, 2.0)).collect(),
-        n: (0..len).map(|_| rng.vec(-1.0, 1.0)).collect(),
+        p: (0..len).map(|_| rng.vec3_in(-2.0, 2.0)).collect(),
+        n: (0..len).map(|_| rng.vec3_in(-1.0, 1.0)).collect(),
     };
     let light_at = Vec3::new(1.2, 1.0, 2.0);
     let eye = Vec3::new(0.0, 0.0, 3.0);
@@ -751,10 +747,10 @@ fn saturation_applies_the_material_colour_to_the_saturated_sum() {
 
 /// A colour channel log-uniform in `[1e-3, f32::MAX]`, sometimes 0.
 fn huge(rng: &mut Rng) -> f32 {
-    if rng.next() < 0.1 {
+    if rng.unit_f32() < 0.1 {
         0.0
     } else {
-        10f32.powf(rng.range(-3.0, 38.53)).min(f32::MAX)
+        10f32.powf(rng.range_f32(-3.0, 38.53)).min(f32::MAX)
     }
 }
 
@@ -764,20 +760,21 @@ fn huge_vec(rng: &mut Rng) -> Vec3 {
 
 #[test]
 fn huge_colours_and_factors_follow_the_saturation_rule_at_every_level() {
-    let mut rng = Rng(11);
+    let mut rng = Rng::new(11);
     let b = random_batch(&mut rng, 16 * 4 + 3);
     for round in 0..12 {
         let lights: Vec<Light> = vec![
             DirectionalLight::try_new(
-                rng.vec(-1.0, 1.0),
+                rng.vec3_in(-1.0, 1.0),
                 LightColors::try_new(huge_vec(&mut rng), huge_vec(&mut rng), huge_vec(&mut rng))
                     .unwrap(),
             )
             .unwrap()
             .into(),
             PointLight::try_new(
-                rng.vec(-3.0, 3.0),
-                Attenuation::try_polynomial(rng.range(0.0, 1.0), 0.0, rng.range(0.0, 0.1)).unwrap(),
+                rng.vec3_in(-3.0, 3.0),
+                Attenuation::try_polynomial(rng.range_f32(0.0, 1.0), 0.0, rng.range_f32(0.0, 0.1))
+                    .unwrap(),
                 LightColors::try_new(huge_vec(&mut rng), huge_vec(&mut rng), huge_vec(&mut rng))
                     .unwrap(),
             )
@@ -787,7 +784,7 @@ fn huge_colours_and_factors_follow_the_saturation_rule_at_every_level() {
         let scene = Scene {
             lights: &lights,
             ambient: huge_vec(&mut rng),
-            viewer: Viewer::At(rng.vec(-4.0, 4.0)),
+            viewer: Viewer::At(rng.vec3_in(-4.0, 4.0)),
         };
         for s in [0.0f32, 0.5, 20.0, 1e4, 1e30, f32::MAX] {
             let m = Material::try_new(
@@ -828,7 +825,7 @@ fn sun_and_viewer(l: Vec3, v: Vec3) -> ([DirectionalLight; 1], Viewer) {
 /// A random unit vector.
 fn unit(rng: &mut Rng) -> Vec3 {
     loop {
-        let v = rng.vec(-1.0, 1.0);
+        let v = rng.vec3_in(-1.0, 1.0);
         if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
             return v.normalize();
         }
@@ -840,7 +837,7 @@ fn blinn_near_the_scalar_cutoff_at_every_level() {
     // Light and viewer nearly opposite: 2 + 2 L·V from 1e-3 (scalar path) through the cutoff 1e-2
     // (where the kernel's cosine form is at its worst) to 0.3, with H = Z and normals spread
     // around H by about the lobe's width, at high shininess.
-    let mut rng = Rng(12);
+    let mut rng = Rng::new(12);
     let m = Material::try_new(Vec3::splat(0.1), Vec3::splat(0.5), Vec3::ONE, 284.0).unwrap();
     for k in 0..=40 {
         let den = 1e-3f64 * 300f64.powf(k as f64 / 40.0);
@@ -854,9 +851,9 @@ fn blinn_near_the_scalar_cutoff_at_every_level() {
             viewer,
         };
         let b = Batch {
-            p: (0..35).map(|_| rng.vec(-1.0, 1.0)).collect(),
+            p: (0..35).map(|_| rng.vec3_in(-1.0, 1.0)).collect(),
             n: (0..35)
-                .map(|i| Vec3::Z + rng.vec(-1.0, 1.0) * (0.02 * i as f32 / 35.0))
+                .map(|i| Vec3::Z + rng.vec3_in(-1.0, 1.0) * (0.02 * i as f32 / 35.0))
                 .collect(),
         };
         for s in [32.0f32, 284.0, 1000.0, 2048.0] {
@@ -883,7 +880,7 @@ fn blinn_near_the_scalar_cutoff_at_every_level() {
 #[test]
 fn grazing_light_at_every_level() {
     // N·L within 1e-5 of 0, both signs: the step gate and the cosine gate switch there.
-    let mut rng = Rng(13);
+    let mut rng = Rng::new(13);
     for _ in 0..6 {
         let l = unit(&mut rng);
         let v = unit(&mut rng);
@@ -894,11 +891,11 @@ fn grazing_light_at_every_level() {
             viewer,
         };
         let b = Batch {
-            p: (0..37).map(|_| rng.vec(-1.0, 1.0)).collect(),
+            p: (0..37).map(|_| rng.vec3_in(-1.0, 1.0)).collect(),
             n: (0..37)
                 .map(|_| {
                     let t = l.cross(unit(&mut rng)).normalize();
-                    t + l * rng.range(-1e-5, 1e-5)
+                    t + l * rng.range_f32(-1e-5, 1e-5)
                 })
                 .collect(),
         };
@@ -914,7 +911,7 @@ fn grazing_light_at_every_level() {
 #[test]
 fn broad_lobes_near_their_zero_at_every_level() {
     // s < 1: the lobe's base within 1e-4 of 0, where x^s is steepest (Phong's cut-off edge).
-    let mut rng = Rng(14);
+    let mut rng = Rng::new(14);
     for _ in 0..6 {
         let l = unit(&mut rng);
         let v = unit(&mut rng);
@@ -935,7 +932,7 @@ fn broad_lobes_near_their_zero_at_every_level() {
             if rv(away) >= 0.0 {
                 continue;
             }
-            let target = rng.range(-1e-4, 1e-4) as f64;
+            let target = rng.range_f32(-1e-4, 1e-4) as f64;
             let (mut a, mut b) = (0.0f64, 1.0f64);
             for _ in 0..60 {
                 let mid = 0.5 * (a + b);
@@ -947,10 +944,10 @@ fn broad_lobes_near_their_zero_at_every_level() {
         // Blinn-Phong: N·H = 0 on the great circle perpendicular to H.
         for _ in 0..37 {
             let t = h.cross(unit(&mut rng).as_dvec3()).normalize();
-            normals.push((t + h * rng.range(-1e-4, 1e-4) as f64).as_vec3());
+            normals.push((t + h * rng.range_f32(-1e-4, 1e-4) as f64).as_vec3());
         }
         let b = Batch {
-            p: (0..normals.len()).map(|_| rng.vec(-1.0, 1.0)).collect(),
+            p: (0..normals.len()).map(|_| rng.vec3_in(-1.0, 1.0)).collect(),
             n: normals,
         };
         for s in [0.01f32, 0.3, 0.7, 1.0] {
@@ -971,7 +968,7 @@ fn unsaturated_points_of_a_call_that_could_saturate_are_as_accurate() {
     // for Blinn-Phong, times Ls = 100) takes the kernels' nine-sum path at every point; at
     // s = 1e38 the lobe is 0 off the exact mirror direction, so the points are ordinary and must
     // meet the same range.
-    let mut rng = Rng(15);
+    let mut rng = Rng::new(15);
     let b = random_batch(&mut rng, 16 * 6 + 5);
     let lights = [
         PointLight::try_new(
@@ -987,10 +984,15 @@ fn unsaturated_points_of_a_call_that_could_saturate_are_as_accurate() {
         ambient: Vec3::splat(0.05),
         viewer: Viewer::At(Vec3::new(0.0, 0.0, 3.0)),
     };
-    let m = Material::try_new(rng.vec(0.0, 1.0), rng.vec(0.0, 1.0), Vec3::ONE, 1e38)
-        .unwrap()
-        .try_with_emission(Vec3::splat(0.01))
-        .unwrap();
+    let m = Material::try_new(
+        rng.vec3_in(0.0, 1.0),
+        rng.vec3_in(0.0, 1.0),
+        Vec3::ONE,
+        1e38,
+    )
+    .unwrap()
+    .try_with_emission(Vec3::splat(0.01))
+    .unwrap();
     for normalization in [Normalization::Energy, Normalization::EnergyExact] {
         for pow in [PowStrategy::Auto, PowStrategy::Exact] {
             let phong = Phong {

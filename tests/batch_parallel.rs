@@ -10,17 +10,15 @@ use phong::{
 };
 use proptest::prelude::*;
 
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
 /// Positions and normals as SoA columns, with some degenerate points (zero normal, a point at the
 /// first light, a huge coordinate) among ordinary ones.
 fn points(n: usize, seed: u64, light_at: Vec3) -> ([Vec<f32>; 3], [Vec<f32>; 3]) {
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-    };
+    let mut rng = Rng::new(seed);
+    let mut next = move || rng.unit_f32() * 2.0 - 1.0;
     let (mut p, mut nn): ([Vec<f32>; 3], [Vec<f32>; 3]) = Default::default();
     for i in 0..n {
         let (mut pos, mut nor) = (

@@ -26,6 +26,8 @@
 
 #[path = "support/batch_range.rs"]
 mod batch_range;
+#[path = "support/rng.rs"]
+mod rng;
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -53,25 +55,22 @@ fn offset(a: Vec3, b: Vec3, k: f32) -> Vec3 {
     fin(a.as_dvec3() + b.as_dvec3() * k as f64)
 }
 
-/// SplitMix64: small, fast, and every stream reproducible from its seed.
-struct Rng(u64);
+/// The tests' SplitMix64 (every stream reproducible from its seed), with the campaign's own
+/// adversarial generators on top.
+struct Rng(rng::Rng);
 
 impl Rng {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
     fn below(&mut self, n: u64) -> u64 {
         self.next() % n
     }
     fn unit_f32(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
+        self.0.unit_f32()
     }
     fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit_f32()
+        self.0.range_f32(lo, hi)
     }
     fn coin(&mut self) -> bool {
         self.next() & 1 == 1
@@ -967,7 +966,7 @@ fn advisor(r: &mut Rng, c: &mut Check) {
 
 /// One worker: `budget` evaluations from the stream `seed`.
 fn work(seed: u64, budget: u64, log: &Mutex<Log>) {
-    let mut r = Rng(seed);
+    let mut r = Rng(rng::Rng::new(seed));
     let mut c = Check::new();
     while c.total() < budget {
         // Weights: the cheap functions often, shading and the batch less (they are heavier, and

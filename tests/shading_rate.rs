@@ -9,6 +9,10 @@ use phong::{
 };
 use proptest::prelude::*;
 
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
 /// A point in the cube `[-r, r]³`.
 fn point(r: f32) -> impl Strategy<Value = Vec3> {
     (-r..r, -r..r, -r..r).prop_map(|(x, y, z)| Vec3::new(x, y, z))
@@ -373,36 +377,17 @@ fn a_grazing_constant_normal_is_covered_by_the_rounding_allowance() {
     assert!(bound < 1e-5, "bound {bound}");
 }
 
-/// SplitMix64 (Steele, Lea & Flood 2014), for the deterministic sweep below.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, a: f32, b: f32) -> f32 {
-        a + (b - a) * self.next()
-    }
-    fn vec(&mut self, a: f32, b: f32) -> Vec3 {
-        Vec3::new(self.range(a, b), self.range(a, b), self.range(a, b))
-    }
-}
-
 #[test]
 fn every_pow_strategy_is_covered_on_small_triangles() {
     // Regression: Phong under a directional light and an infinite viewer, small random triangles.
     // The approximate strategies' errors were not in the bound: Poly5's flush of lobes below
     // 2⁻¹⁰⁰ to 0 differed by 6.9e-31 where the bound was 2.4e-31, and SplitPoly3 by 1e-45 where
     // it was 0.
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     let mut cases = 0;
     for _ in 0..300 {
-        let l = rng.vec(-1.0, 1.0).normalize_or(Vec3::Z);
-        let v = rng.vec(-1.0, 1.0).normalize_or(Vec3::Z);
+        let l = rng.vec3_in(-1.0, 1.0).normalize_or(Vec3::Z);
+        let v = rng.vec3_in(-1.0, 1.0).normalize_or(Vec3::Z);
         let sun = DirectionalLight::try_new(
             l,
             LightColors::try_from_strengths(Vec3::ONE, 0.1, 0.8, 1.0).unwrap(),
@@ -414,15 +399,15 @@ fn every_pow_strategy_is_covered_on_small_triangles() {
             ambient: Vec3::ZERO,
             viewer: Viewer::Infinite(v),
         };
-        let c = rng.vec(-1.0, 1.0);
-        let size = 10f32.powf(rng.range(-3.0, -1.0));
+        let c = rng.vec3_in(-1.0, 1.0);
+        let size = 10f32.powf(rng.range_f32(-3.0, -1.0));
         let p = [
             c,
-            c + rng.vec(-1.0, 1.0) * size,
-            c + rng.vec(-1.0, 1.0) * size,
+            c + rng.vec3_in(-1.0, 1.0) * size,
+            c + rng.vec3_in(-1.0, 1.0) * size,
         ];
         let face = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or(Vec3::Z);
-        let n = [0; 3].map(|_| (face + rng.vec(-0.3, 0.3)).normalize_or(face));
+        let n = [0; 3].map(|_| (face + rng.vec3_in(-0.3, 0.3)).normalize_or(face));
         for s in [8.0f32, 16.0, 20.5, 32.0, 64.0] {
             let m = Material::try_from_color(Vec3::ONE, s).unwrap();
             for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
@@ -451,14 +436,14 @@ fn tiny_lobes_near_the_flush_and_underflow_thresholds_are_covered() {
     // squaring rounds to the smallest subnormal where f32 `powf` gives 0 — both differences
     // exceeded a bound that was 2.4e-31 and 0. Specular light only (nothing else adds to the
     // bound), R·V set so the lobe at the centre normal is 2^-k, normals spread slightly around it.
-    let mut rng = Rng(8);
+    let mut rng = Rng::new(8);
     let light = LightColors::try_new(Vec3::ZERO, Vec3::ZERO, Vec3::ONE).unwrap();
     for k in (92..=108).chain(140..=152) {
         for s in [8.0f32, 16.0, 20.5, 32.0, 64.0] {
             let b = 2f64.powf(-(k as f64) / s as f64);
-            let n0 = rng.vec(-1.0, 1.0).normalize_or(Vec3::Z);
+            let n0 = rng.vec3_in(-1.0, 1.0).normalize_or(Vec3::Z);
             // L above the surface, R its mirror image, V at angle acos(b) from R.
-            let l = (n0 + rng.vec(-0.7, 0.7)).normalize_or(n0);
+            let l = (n0 + rng.vec3_in(-0.7, 0.7)).normalize_or(n0);
             let r = phong::reflect(n0, l).as_dvec3();
             let t = r.any_orthonormal_vector();
             let v = (r * b + t * (1.0 - b * b).sqrt()).as_vec3();
@@ -468,14 +453,14 @@ fn tiny_lobes_near_the_flush_and_underflow_thresholds_are_covered() {
                 ambient: Vec3::ZERO,
                 viewer: Viewer::Infinite(v),
             };
-            let c = rng.vec(-1.0, 1.0);
+            let c = rng.vec3_in(-1.0, 1.0);
             let size = 1e-3;
             let p = [
                 c,
-                c + rng.vec(-1.0, 1.0) * size,
-                c + rng.vec(-1.0, 1.0) * size,
+                c + rng.vec3_in(-1.0, 1.0) * size,
+                c + rng.vec3_in(-1.0, 1.0) * size,
             ];
-            let n = [0; 3].map(|_| (n0 + rng.vec(-1e-3, 1e-3)).normalize());
+            let n = [0; 3].map(|_| (n0 + rng.vec3_in(-1e-3, 1e-3)).normalize());
             let m = Material::try_from_color(Vec3::ONE, s).unwrap();
             for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
                 let model = Model::from(Phong {

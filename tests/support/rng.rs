@@ -21,6 +21,24 @@ impl Rng {
         z ^ (z >> 31)
     }
 
+    /// Uniform in `[0, 1)` in `f32`: the top 24 bits of the next output.
+    pub fn unit_f32(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    /// Uniform in `[a, b)` in `f32` arithmetic.
+    pub fn range_f32(&mut self, a: f32, b: f32) -> f32 {
+        a + (b - a) * self.unit_f32()
+    }
+
+    /// Each component uniform in `[a, b)`, by [`range_f32`](Self::range_f32), `x` first.
+    pub fn vec3_in(&mut self, a: f32, b: f32) -> Vec3 {
+        let x = self.range_f32(a, b);
+        let y = self.range_f32(a, b);
+        let z = self.range_f32(a, b);
+        Vec3::new(x, y, z)
+    }
+
     /// Uniform in `[0, 1)`.
     pub fn unit(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
