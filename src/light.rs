@@ -275,8 +275,9 @@ pub struct FlatLight {
 
 impl FlatLight {
     /// [`LightSource::sample`] by the one formula, with the full-range direction and distance
-    /// (no range test): the same direction and, for `None` and polynomial falloffs, the same
-    /// factor as `sample`, bit for bit (see [`FlatAttenuation`] for the others).
+    /// (no range test): the same direction and factor as `sample`, bit for bit wherever the
+    /// squared distance neither under- nor overflows `f32` ([`FlatAttenuation`] is
+    /// `Attenuation::factor`'s own evaluation).
     #[inline(always)]
     pub(crate) fn sample(&self, p: Vec3) -> LightSample {
         if self.point {
