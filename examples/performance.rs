@@ -138,34 +138,22 @@ fn scalar_exact(kind: Kind, s: f32, p: &[Vec3], n: &[Vec3]) -> Vec<Vec3> {
         viewer: Viewer::At(VIEW_POS),
     };
     let m = Material::try_new(KA, KD, KS, s).unwrap();
+    let pow = PowStrategy::Exact;
+    let model: phong::Model = match kind {
+        Kind::Phong => Phong {
+            pow,
+            ..Phong::default()
+        }
+        .into(),
+        Kind::Blinn => BlinnPhong {
+            pow,
+            ..BlinnPhong::default()
+        }
+        .into(),
+    };
     p.iter()
         .zip(n)
-        .map(|(&p, &n)| {
-            let pow = PowStrategy::Exact;
-            match kind {
-                Kind::Phong => phong::shade(
-                    &Phong {
-                        pow,
-                        ..Phong::default()
-                    },
-                    &m,
-                    &scene,
-                    p,
-                    n,
-                ),
-                Kind::Blinn => phong::shade(
-                    &BlinnPhong {
-                        pow,
-                        ..BlinnPhong::default()
-                    },
-                    &m,
-                    &scene,
-                    p,
-                    n,
-                ),
-            }
-            .total()
-        })
+        .map(|(&p, &n)| phong::shade(&model, &m, &scene, p, n).total())
         .collect()
 }
 

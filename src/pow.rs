@@ -469,11 +469,7 @@ pub(crate) fn pow_u32_fixed(x: f32, n: u32) -> f32 {
 /// the branch on `f` is taken the same way for every point of a material.
 #[inline(always)]
 pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
-    if f != 0.0 {
-        poly_pow(Poly::P7, x, f)
-    } else {
-        pow_u32(x, n)
-    }
+    auto_pow_by(pow_u32, x, n, f)
 }
 
 /// [`auto_pow`] with the fixed-length ladder [`pow_u32_fixed`], for code the compiler vectorises
@@ -481,10 +477,16 @@ pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
 /// for bit.
 #[inline(always)]
 pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32) -> f32 {
+    auto_pow_by(pow_u32_fixed, x, n, f)
+}
+
+/// `Auto`'s choice between the polynomial and a squaring `ladder` for `x^n`.
+#[inline(always)]
+fn auto_pow_by(ladder: impl Fn(f32, u32) -> f32, x: f32, n: u32, f: f32) -> f32 {
     if f != 0.0 {
         poly_pow(Poly::P7, x, f)
     } else {
-        pow_u32_fixed(x, n)
+        ladder(x, n)
     }
 }
 
