@@ -795,7 +795,23 @@ fn shading(r: &mut Rng, c: &mut Check) {
         )
     });
 
+    // The prepared shader: with one directional or point light it takes the straight-line
+    // one-light path, whose full-range normalisation can differ from `shade`'s range test in
+    // the last places where a squared length under- or overflows, so it is checked on its own
+    // against the documented range, and shadowing is compared within the same shader.
     let shader = Shader::new(model, &material, &scene);
+    let tu = shader.shade(p, normal);
+    c.count("Shader::shade", 1);
+    c.expect(
+        "Shader::shade",
+        ok(&tu) && (range.saturated || range.holds(tu.total())),
+        || {
+            format!(
+                "{model:?} {material:?} {lights:?} {viewer:?} p={p:?} n={normal:?} -> {tu:?} outside {range:?}"
+            )
+        },
+    );
+    let t = tu;
     let vis: Vec<f32> = lights
         .iter()
         .map(|_| match r.below(3) {
