@@ -111,7 +111,26 @@ fn shade_one<M: ReflectionModel>(
         ambient: Vec3::splat(0.05),
         viewer,
     };
-    phong::shade(model, &plastic(s), &scene, p, n)
+    let free = phong::shade(model, &plastic(s), &scene, p, n);
+    // The prepared shader's one-light path (straight-line, full-range normalisation) on the same
+    // degenerate input: as total as the light loop, and the same answer. The two normalisations
+    // differ only where a squared component is subnormal inside the common range: a relative
+    // error below about 1e-8 in a direction, which the lobe's exponent multiplies by at most
+    // `s`; the rest is a few roundings (1e-6), and 1e-35 absolute covers subnormal outputs.
+    let one = phong::Shader::new(model, &plastic(s), &scene).shade(p, n);
+    assert_terms_ok(&one, "Shader (one light)");
+    let tol = |b: Vec3| b.abs() * (1e-6 + 1e-8 * s.max(1.0)) + Vec3::splat(1e-35);
+    for (a, b) in [
+        (one.ambient, free.ambient),
+        (one.diffuse, free.diffuse),
+        (one.specular, free.specular),
+    ] {
+        assert!(
+            (a - b).abs().cmple(tol(b)).all(),
+            "one-light path {a} vs light loop {b} at p = {p}, n = {n}, s = {s}"
+        );
+    }
+    free
 }
 
 fn point_light(p: Vec3, a: Attenuation) -> Light {
