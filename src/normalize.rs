@@ -81,23 +81,13 @@ pub fn normalize_or_zero(v: Vec3) -> Vec3 {
 /// Zero, NaN and infinite components give `(0, 0)`.
 #[inline(always)]
 fn full_range(v: Vec3) -> (Vec3, f32) {
-    let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
-    // The largest magnitude, capped below 2^127 so its exponent is at most 253 (a NaN reads as
-    // the cap; `valid` below rejects it).
-    let m = math::min_or(math::max_or(math::max_or(ax, ay), az), BELOW_2_127);
-    let e_bits = m.to_bits() & 0x7f80_0000;
-    // 2^(127−e): the exponent field 254 − e.
-    let w = v * f32::from_bits(0x7f00_0000 - e_bits);
+    // A NaN reads as the cap in `scales`; `valid` below rejects it.
+    let (scale, unscale) = scales(v);
+    let w = v * scale;
     let w2 = w.length_squared();
     // NaN fails both tests; a zero vector gives 0 and an infinite component +∞.
     let valid = (w2 > 0.0) & (w2 < f32::INFINITY);
     let root = math::sqrt(w2);
-    // Undo the scaling on the length: 2^(e−127), which is the subnormal 2^−127 when e = 0.
-    let unscale = if e_bits == 0 {
-        f32::from_bits(0x0040_0000)
-    } else {
-        f32::from_bits(e_bits)
-    };
     let len = math::min_or(root * unscale, math::MAX);
     let dir = w * (1.0 / root);
     if valid { (dir, len) } else { (Vec3::ZERO, 0.0) }
