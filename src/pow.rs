@@ -472,12 +472,17 @@ pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
     auto_pow_by(pow_u32, x, n, f)
 }
 
-/// [`auto_pow`] with the fixed-length ladder [`pow_u32_fixed`], for code the compiler vectorises
-/// across points (where the branch on `f` becomes a select of both forms). The same result, bit
-/// for bit.
+/// [`auto_pow`] for code the compiler vectorises across points: the fixed-length ladder
+/// [`pow_u32_fixed`], and both forms computed before one is selected by `f`. The same result, bit
+/// for bit. Where `f` is the same for every point (one material), the select keeps a scalar
+/// condition in the vectorised loop, and the code generator turns it into a branch that skips at
+/// least the end of the polynomial for a whole exponent (its last operation is a division, which
+/// the code generator moves into the branch with what only it uses).
 #[inline(always)]
 pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32) -> f32 {
-    auto_pow_by(pow_u32_fixed, x, n, f)
+    let ladder = pow_u32_fixed(x, n);
+    let poly = poly_pow(Poly::P7, x, f);
+    if f != 0.0 { poly } else { ladder }
 }
 
 /// `Auto`'s choice between the polynomial and a squaring `ladder` for `x^n`.
@@ -508,22 +513,31 @@ pub(crate) fn auto_split(s: f32) -> (u32, f32) {
     }
 }
 
-/// `Σ c[k] t^k` by Horner's rule.
+/// `Σ c[k] t^k` by Estrin's scheme (`N ≤ 8`).
 #[inline(always)]
 fn horner<const N: usize>(t: f32, c: &[f32; N]) -> f32 {
+    const { assert!(N <= 8, "horner: at most 8 coefficients") };
     // Estrin's scheme: pairs c[k] + c[k+1]·t, then combined with t², t⁴: depth log2 N.
+    // A missing odd coefficient leaves its pair `c[k]` alone rather than adding `0·t` (which
+    // the compiler must keep: it is −0 or NaN for some `t`), and a missing pair adds nothing.
+    let pair = |k: usize| {
+        if k + 1 < N { c[k] + c[k + 1] * t } else { c[k] }
+    };
     let t2 = t * t;
-    let mut pairs = [0.0f32; 4];
-    let mut k = 0;
-    while k < N {
-        let hi = if k + 1 < N { c[k + 1] } else { 0.0 };
-        pairs[k / 2] = c[k] + hi * t;
-        k += 2;
+    let lo = if N > 2 {
+        pair(0) + pair(2) * t2
+    } else {
+        pair(0)
+    };
+    if N <= 4 {
+        return lo;
     }
-    let t4 = t2 * t2;
-    let lo = pairs[0] + pairs[1] * t2;
-    let hi = pairs[2] + pairs[3] * t2;
-    lo + hi * t4
+    let hi = if N > 6 {
+        pair(4) + pair(6) * t2
+    } else {
+        pair(4)
+    };
+    lo + hi * (t2 * t2)
 }
 
 /// `log2 x` for `x ∈ (0, 1]`, subnormals included; branch-free so it vectorises. `x = 1` gives 0
@@ -541,9 +555,10 @@ pub(crate) fn log2_poly<const N: usize>(x: f32, c: &[f32; N]) -> f32 {
     e + t * horner(t, c)
 }
 
-/// `2^y` for `y ∈ [−100, 0]` (callers select 0 below), branch-free; `y = 0` gives 1 exactly.
+/// `2^y = q·2^r` for `y ∈ [−100, 0]` (callers flush below) as `(q, r)`: `r = round(y)` and
+/// `q = 2^(y − r)` near 1. Branch-free; `y = 0` gives `(1, 0)` exactly.
 #[inline(always)]
-pub(crate) fn exp2_poly<const N: usize>(y: f32, c: &[f32; N]) -> f32 {
+fn exp2_parts<const N: usize>(y: f32, c: &[f32; N]) -> (f32, i32) {
     // Not `clamp`: `max` also maps NaN to the lower bound.
     #[allow(clippy::manual_clamp)]
     let y = y.max(FLUSH_EXP2).min(0.0);
@@ -553,9 +568,7 @@ pub(crate) fn exp2_poly<const N: usize>(y: f32, c: &[f32; N]) -> f32 {
     let r = big - 12_582_912.0;
     let ri = (big.to_bits() as i32).wrapping_sub(0x4b40_0000);
     let f = y - r;
-    let q = 1.0 + f * horner(f, c);
-    let scale = f32::from_bits((ri.wrapping_add(127) as u32) << 23);
-    q * scale
+    (1.0 + f * horner(f, c), ri)
 }
 
 /// `x^s` by `exp2(s·log2 x)` for `x ∈ (0, 1]`; 0 where the result is below `2^-100`.
@@ -566,12 +579,22 @@ pub(crate) fn poly_pow(poly: Poly, x: f32, s: f32) -> f32 {
         Poly::P5 => s * log2_poly(x, &LOG2_5),
         Poly::P7 => s * log2_poly(x, &LOG2_7),
     };
-    let p = match poly {
-        Poly::P3 => exp2_poly(y, &EXP2_3),
-        Poly::P5 => exp2_poly(y, &EXP2_4),
-        Poly::P7 => exp2_poly(y, &EXP2_5),
+    let (q, ri) = match poly {
+        Poly::P3 => exp2_parts(y, &EXP2_3),
+        Poly::P5 => exp2_parts(y, &EXP2_4),
+        Poly::P7 => exp2_parts(y, &EXP2_5),
     };
-    if y >= FLUSH_EXP2 { p } else { 0.0 }
+    // `q·2^r` as `q / 2^−r`: dividing by a power of two is exact here (`q ∈ (0.7, 1.5)` and
+    // `r ≥ −100` keep the result normal), so the bits are the product's; the flush is a division
+    // by +∞ (`q > 0`, so `+0`, the selected 0's bits). A division as the result's last operation
+    // is what lets the code generator move the whole evaluation behind a branch when a caller
+    // selects it on a shader-wide condition (see `Shader::one_light`).
+    let inv_scale = f32::from_bits((127i32.wrapping_sub(ri) as u32) << 23);
+    q / if y >= FLUSH_EXP2 {
+        inv_scale
+    } else {
+        f32::INFINITY
+    }
 }
 
 /// `x^s` by [`PowStrategy::Exact`]; see the module docs for the domain and the `0^0` rule.

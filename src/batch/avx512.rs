@@ -112,7 +112,7 @@ fn log2<const N: usize>(x: V, c: &[f32; N]) -> V {
     _mm512_fmadd_ps(t, poly(t, c), ef)
 }
 
-/// `2^y`, 0 where `y < −100` (as `pow::exp2_poly`).
+/// `2^y`, 0 where `y < −100` (as `pow::poly_pow`'s).
 #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
 #[inline]
 fn exp2<const N: usize>(y: V, c: &[f32; N]) -> V {
