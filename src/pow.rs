@@ -479,9 +479,9 @@ pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
 /// least the end of the polynomial for a whole exponent (its last operation is a division, which
 /// the code generator moves into the branch with what only it uses).
 #[inline(always)]
-pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32) -> f32 {
+pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32, k: &PolyConsts<7, 5>) -> f32 {
     let ladder = pow_u32_fixed(x, n);
-    let poly = poly_pow(Poly::P7, x, f);
+    let poly = poly_pow_with(x, f, k);
     if f != 0.0 { poly } else { ladder }
 }
 
@@ -540,57 +540,113 @@ fn horner<const N: usize>(t: f32, c: &[f32; N]) -> f32 {
     lo + hi * (t2 * t2)
 }
 
+/// The floating-point constants of a polynomial `x^s`: the `log2` and `exp2` coefficients and the
+/// few others its evaluation uses.
+///
+/// A value, not only constants in the code, so that a shading loop can read them from a prepared
+/// shader ([`PolyConsts::opaque`]): the compiler then keeps them in registers. Written into the
+/// instructions as constants they are loaded from memory, and the code generator's hoisting of
+/// those loads out of a loop strips the instructions' "raises no FP exception" flag, which keeps
+/// them from being moved into a branch that skips them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PolyConsts<const L: usize, const E: usize> {
+    log2: [f32; L],
+    exp2: [f32; E],
+    /// `2^24`, the scale of a subnormal `x`, and its exponent `24`.
+    two_24: f32,
+    twenty_four: f32,
+    min_positive: f32,
+    one: f32,
+    /// `1.5·2^23`, for rounding to an integer.
+    round: f32,
+    flush: f32,
+}
+
+impl<const L: usize, const E: usize> PolyConsts<L, E> {
+    const fn new(log2: [f32; L], exp2: [f32; E]) -> Self {
+        PolyConsts {
+            log2,
+            exp2,
+            two_24: 16_777_216.0,
+            twenty_four: 24.0,
+            min_positive: f32::MIN_POSITIVE,
+            one: 1.0,
+            round: 12_582_912.0,
+            flush: FLUSH_EXP2,
+        }
+    }
+
+    /// The same values, hidden from the optimiser (see the type's docs); for a shader to keep.
+    #[inline]
+    pub(crate) fn opaque(self) -> Self {
+        core::hint::black_box(self)
+    }
+}
+
+/// [`Poly::P3`]'s constants.
+const P3_CONSTS: PolyConsts<3, 3> = PolyConsts::new(LOG2_3, EXP2_3);
+/// [`Poly::P5`]'s constants.
+const P5_CONSTS: PolyConsts<5, 4> = PolyConsts::new(LOG2_5, EXP2_4);
+/// [`Poly::P7`]'s constants.
+pub(crate) const P7_CONSTS: PolyConsts<7, 5> = PolyConsts::new(LOG2_7, EXP2_5);
+
 /// `log2 x` for `x ∈ (0, 1]`, subnormals included; branch-free so it vectorises. `x = 1` gives 0
 /// exactly. For `x = 0` it returns a finite value about −151 (callers select 0).
 #[inline(always)]
-pub(crate) fn log2_poly<const N: usize>(x: f32, c: &[f32; N]) -> f32 {
-    let sub = x < f32::MIN_POSITIVE;
-    let xs = if sub { x * 16_777_216.0 } else { x }; // 2^24: exact
+fn log2_poly<const L: usize, const E: usize>(x: f32, k: &PolyConsts<L, E>) -> f32 {
+    let sub = x < k.min_positive;
+    let xs = if sub { x * k.two_24 } else { x }; // exact
     let bits = xs.to_bits() as i32;
     // Exponent e such that m = x·2^-e ∈ [√½, √2): offset by the bits of √½.
     let e = bits.wrapping_sub(0x3f35_04f3) >> 23;
     let m = f32::from_bits(bits.wrapping_sub(e.wrapping_shl(23)) as u32);
-    let t = m - 1.0;
-    let e = e as f32 - if sub { 24.0 } else { 0.0 };
-    e + t * horner(t, c)
+    let t = m - k.one;
+    let e = e as f32 - if sub { k.twenty_four } else { 0.0 };
+    e + t * horner(t, &k.log2)
 }
 
 /// `2^y = q·2^r` for `y ∈ [−100, 0]` (callers flush below) as `(q, r)`: `r = round(y)` and
 /// `q = 2^(y − r)` near 1. Branch-free; `y = 0` gives `(1, 0)` exactly.
 #[inline(always)]
-fn exp2_parts<const N: usize>(y: f32, c: &[f32; N]) -> (f32, i32) {
+fn exp2_parts<const L: usize, const E: usize>(y: f32, k: &PolyConsts<L, E>) -> (f32, i32) {
     // Not `clamp`: `max` also maps NaN to the lower bound.
     #[allow(clippy::manual_clamp)]
-    let y = y.max(FLUSH_EXP2).min(0.0);
+    let y = y.max(k.flush).min(0.0);
     // Round to nearest with the 1.5·2^23 trick (|y| ≤ 100 ≪ 2^22): the integer lands in the low
     // mantissa bits of `big`, so no float-to-int conversion (which does not vectorise) is needed.
-    let big = y + 12_582_912.0;
-    let r = big - 12_582_912.0;
+    let big = y + k.round;
+    let r = big - k.round;
     let ri = (big.to_bits() as i32).wrapping_sub(0x4b40_0000);
     let f = y - r;
-    (1.0 + f * horner(f, c), ri)
+    (k.one + f * horner(f, &k.exp2), ri)
 }
 
 /// `x^s` by `exp2(s·log2 x)` for `x ∈ (0, 1]`; 0 where the result is below `2^-100`.
 #[inline(always)]
 pub(crate) fn poly_pow(poly: Poly, x: f32, s: f32) -> f32 {
-    let y = match poly {
-        Poly::P3 => s * log2_poly(x, &LOG2_3),
-        Poly::P5 => s * log2_poly(x, &LOG2_5),
-        Poly::P7 => s * log2_poly(x, &LOG2_7),
-    };
-    let (q, ri) = match poly {
-        Poly::P3 => exp2_parts(y, &EXP2_3),
-        Poly::P5 => exp2_parts(y, &EXP2_4),
-        Poly::P7 => exp2_parts(y, &EXP2_5),
-    };
+    match poly {
+        Poly::P3 => poly_pow_with(x, s, &P3_CONSTS),
+        Poly::P5 => poly_pow_with(x, s, &P5_CONSTS),
+        Poly::P7 => poly_pow_with(x, s, &P7_CONSTS),
+    }
+}
+
+/// [`poly_pow`] with its constants `k`.
+#[inline(always)]
+pub(crate) fn poly_pow_with<const L: usize, const E: usize>(
+    x: f32,
+    s: f32,
+    k: &PolyConsts<L, E>,
+) -> f32 {
+    let y = s * log2_poly(x, k);
+    let (q, ri) = exp2_parts(y, k);
     // `q·2^r` as `q / 2^−r`: dividing by a power of two is exact here (`q ∈ (0.7, 1.5)` and
     // `r ≥ −100` keep the result normal), so the bits are the product's; the flush is a division
     // by +∞ (`q > 0`, so `+0`, the selected 0's bits). A division as the result's last operation
     // is what lets the code generator move the whole evaluation behind a branch when a caller
     // selects it on a shader-wide condition (see `Shader::one_light`).
     let inv_scale = f32::from_bits((127i32.wrapping_sub(ri) as u32) << 23);
-    q / if y >= FLUSH_EXP2 {
+    q / if y >= k.flush {
         inv_scale
     } else {
         f32::INFINITY
@@ -668,7 +724,7 @@ mod tests {
             let (n, f) = auto_split(s);
             for &x in &BASES[1..] {
                 let want = PowStrategy::Auto.plan(s).eval(x);
-                for got in [auto_pow(x, n, f), auto_pow_fixed(x, n, f)] {
+                for got in [auto_pow(x, n, f), auto_pow_fixed(x, n, f, &P7_CONSTS)] {
                     assert_eq!(got.to_bits(), want.to_bits(), "x = {x}, s = {s}");
                 }
             }

@@ -10,7 +10,8 @@ use crate::model::ReflectionModel;
 use crate::normalize::{direction_between, normalize_full, sub_saturating};
 use crate::normalize_or_zero;
 use crate::pow::{
-    Poly, PowPlan, PowStrategy, auto_pow, auto_pow_fixed, auto_split, pow_u32, pow_u32_fixed,
+    P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_pow, auto_pow_fixed, auto_split,
+    pow_u32, pow_u32_fixed,
 };
 use crate::resolved_model::{Lobe, ResolvedModel, SpecularPlan};
 use crate::shade::{Scene, Viewer};
@@ -98,6 +99,8 @@ pub struct Shader<'a, M, L> {
 #[derive(Clone, Copy, Debug)]
 struct OneLight {
     flat: FlatLight,
+    /// `Auto`'s polynomial constants, opaque (see [`PolyConsts`]).
+    poly: PolyConsts<7, 5>,
     ambient: Vec3,
     diffuse: Vec3,
     specular: Vec3,
@@ -171,6 +174,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             one: match scene.lights {
                 [light] if bound => light.flat().map(|flat| OneLight {
                     flat,
+                    poly: P7_CONSTS.opaque(),
                     ambient: light.colors().ambient(),
                     diffuse: light.colors().diffuse(),
                     specular: light.colors().specular(),
@@ -508,7 +512,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     n: whole,
                     frac,
                     poly: Poly::P7,
-                } => lobe_power(base, &|x| auto_pow_fixed(x, whole, frac)),
+                } => lobe_power(base, &|x| auto_pow_fixed(x, whole, frac, &one.poly)),
                 PowPlan::Squaring { n: whole } => lobe_power(base, &|x| pow_u32_fixed(x, whole)),
                 PowPlan::Exact { s } => lobe_power(base, &|x| math::powf(x, s)),
                 plan => lobe_power(base, &|x| plan.eval(x)),
