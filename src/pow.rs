@@ -474,14 +474,27 @@ pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
 
 /// [`auto_pow`] for code the compiler vectorises across points: the fixed-length ladder
 /// [`pow_u32_fixed`], and both forms computed before one is selected by `f`. The same result, bit
-/// for bit. Where `f` is the same for every point (one material), the select keeps a scalar
-/// condition in the vectorised loop, and the code generator turns it into a branch that skips at
-/// least the end of the polynomial for a whole exponent (its last operation is a division, which
-/// the code generator moves into the branch with what only it uses).
+/// for bit.
+///
+/// `SHARED`: `f` is the same at every point (one material for the whole loop). The select then
+/// keeps a scalar condition in the vectorised loop, which the code generator turns into a
+/// branch; with the polynomial ending in a division ([`poly_pow_div`]) and its constants `k`
+/// read from a prepared shader ([`PolyConsts`]), it moves the polynomial into that branch, and a
+/// whole exponent skips it. Otherwise (a shininess per point) both forms run for every point,
+/// and the polynomial ends in the cheaper product.
 #[inline(always)]
-pub(crate) fn auto_pow_fixed(x: f32, n: u32, f: f32, k: &PolyConsts<7, 5>) -> f32 {
+pub(crate) fn auto_pow_fixed<const SHARED: bool>(
+    x: f32,
+    n: u32,
+    f: f32,
+    k: &PolyConsts<7, 5>,
+) -> f32 {
     let ladder = pow_u32_fixed(x, n);
-    let poly = poly_pow_with(x, f, k);
+    let poly = if SHARED {
+        poly_pow_div(x, f, k)
+    } else {
+        poly_pow_with(x, f, k)
+    };
     if f != 0.0 { poly } else { ladder }
 }
 
@@ -633,18 +646,23 @@ pub(crate) fn poly_pow(poly: Poly, x: f32, s: f32) -> f32 {
 
 /// [`poly_pow`] with its constants `k`.
 #[inline(always)]
-pub(crate) fn poly_pow_with<const L: usize, const E: usize>(
-    x: f32,
-    s: f32,
-    k: &PolyConsts<L, E>,
-) -> f32 {
+fn poly_pow_with<const L: usize, const E: usize>(x: f32, s: f32, k: &PolyConsts<L, E>) -> f32 {
     let y = s * log2_poly(x, k);
     let (q, ri) = exp2_parts(y, k);
-    // `q·2^r` as `q / 2^−r`: dividing by a power of two is exact here (`q ∈ (0.7, 1.5)` and
-    // `r ≥ −100` keep the result normal), so the bits are the product's; the flush is a division
-    // by +∞ (`q > 0`, so `+0`, the selected 0's bits). A division as the result's last operation
-    // is what lets the code generator move the whole evaluation behind a branch when a caller
-    // selects it on a shader-wide condition (see `Shader::one_light`).
+    let p = q * f32::from_bits((ri.wrapping_add(127) as u32) << 23);
+    if y >= k.flush { p } else { 0.0 }
+}
+
+/// [`poly_pow_with`] ending in a division, for a caller that selects it by a condition the same
+/// at every point (see [`auto_pow_fixed`]): `q·2^r` as `q / 2^−r`, which is exact here
+/// (`q ∈ (0.7, 1.5)` and `r ≥ −100` keep the result normal), so the bits are the product's; the
+/// flush is a division by `+∞` (`q > 0`, so `+0`, the selected 0's bits). A division costs more
+/// than the product when it runs, but as the result's last operation it lets the code generator
+/// move the whole evaluation behind the branch that the caller's select becomes.
+#[inline(always)]
+fn poly_pow_div<const L: usize, const E: usize>(x: f32, s: f32, k: &PolyConsts<L, E>) -> f32 {
+    let y = s * log2_poly(x, k);
+    let (q, ri) = exp2_parts(y, k);
     let inv_scale = f32::from_bits((127i32.wrapping_sub(ri) as u32) << 23);
     q / if y >= k.flush {
         inv_scale
@@ -724,7 +742,11 @@ mod tests {
             let (n, f) = auto_split(s);
             for &x in &BASES[1..] {
                 let want = PowStrategy::Auto.plan(s).eval(x);
-                for got in [auto_pow(x, n, f), auto_pow_fixed(x, n, f, &P7_CONSTS)] {
+                for got in [
+                    auto_pow(x, n, f),
+                    auto_pow_fixed::<true>(x, n, f, &P7_CONSTS),
+                    auto_pow_fixed::<false>(x, n, f, &P7_CONSTS),
+                ] {
                     assert_eq!(got.to_bits(), want.to_bits(), "x = {x}, s = {s}");
                 }
             }

@@ -308,7 +308,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         normal: Vec3,
         visibility: impl Visibility,
     ) -> Terms {
-        self.run(&self.prepared, position, normal, visibility)
+        self.run::<true>(&self.prepared, position, normal, visibility)
     }
 
     /// The four terms with a per-point [`Surface`] in place of the material's reflectances and
@@ -352,7 +352,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             sanitize_colour(surface.specular),
             s,
         );
-        self.run(&p, position, normal, visibility)
+        self.run::<false>(&p, position, normal, visibility)
     }
 
     /// The cosines [`shade`](Self::shade) forms for light `index` at a point, with the light's
@@ -395,8 +395,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         }
     }
 
+    /// `SHARED`: `surface` is the shader's own, the same at every point.
     #[inline(always)]
-    fn run(
+    fn run<const SHARED: bool>(
         &self,
         surface: &Prepared,
         position: Vec3,
@@ -404,7 +405,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         visibility: impl Visibility,
     ) -> Terms {
         if let (Some(one), Some(r)) = (self.one, self.resolved) {
-            return self.one_light(r, surface, one, position, normal, visibility);
+            return self.one_light::<SHARED>(r, surface, one, position, normal, visibility);
         }
         let n = normalize_or_zero(normal);
         let v = self.view_direction(position);
@@ -471,7 +472,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// in the same order, `FlatAttenuation` being `Attenuation::factor`'s own. Tested in
     /// tests/shader.rs for every model, falloff, viewer, visibility and per-point surface.
     #[inline(always)]
-    fn one_light(
+    fn one_light<const SHARED: bool>(
         &self,
         r: ResolvedModel,
         surface: &Prepared,
@@ -512,7 +513,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     n: whole,
                     frac,
                     poly: Poly::P7,
-                } => lobe_power(base, &|x| auto_pow_fixed(x, whole, frac, &one.poly)),
+                } => lobe_power(base, &|x| {
+                    auto_pow_fixed::<SHARED>(x, whole, frac, &one.poly)
+                }),
                 PowPlan::Squaring { n: whole } => lobe_power(base, &|x| pow_u32_fixed(x, whole)),
                 PowPlan::Exact { s } => lobe_power(base, &|x| math::powf(x, s)),
                 plan => lobe_power(base, &|x| plan.eval(x)),
