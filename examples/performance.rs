@@ -559,22 +559,28 @@ fn main() {
          - **`scalar` against `naive_glam`.** Both loops are vectorised by LLVM, four points per \
          instruction (`mulps`, `sqrtps`, `divps` across points; `naive_glam` adds four scalar \
          `powf` calls): the one-light `Shader` path is straight-line code with no call, loop or \
-         data branch (see `Shader`'s docs). What remains is work the baseline does not do, each \
-         item measured on this machine by taking it out of a probe loop: the exponent's plan is \
-         a run-time value (the material's shininess), so the vectorised loop evaluates both \
-         `Auto` forms, squaring and the `Poly7` polynomial, and selects (about 20% of the \
-         time); full-range normalisation by power-of-two scaling, where the baseline's \
-         `normalize` fails on huge and tiny vectors (about 15%); the saturation, the masks for \
-         missing directions and the `f64` evaluation of an overflowing attenuation (a few % \
-         each). The path is latency-bound: its chain per point is about twice the baseline's, \
-         and Estrin's scheme for the polynomials (shorter chains) was worth about 15%. A loop \
-         the compiler cannot see into (a scene passed in, several lights) is scalar: that is \
-         `raytrace` above, against scalar hand-written code.\n\
+         data branch (see `Shader`'s docs), and for one material a whole shininess skips the \
+         `Poly7` form of `Auto` (the select on the material's exponent becomes a branch). What \
+         remains is work the baseline does not do, each item measured on this machine by taking \
+         it out of a probe loop: full-range normalisation by power-of-two scaling, where the \
+         baseline's `normalize` fails on huge and tiny vectors (about 10% for each of N, V and \
+         L); the squaring ladder of fixed length, whose 22 selects on the exponent become 22 \
+         branches (about 15%); the `f64` evaluation of an overflowing attenuation denominator and \
+         the window of the windowed forms, computed for every falloff (about 14% together); the \
+         saturation (about 8%); the masks for missing directions, the visibility clamp, the gate \
+         and the saturating subtraction (1–4% each). The path is latency-bound: its chain per \
+         point is about twice the baseline's. Tried and measured slower or wrong: uniform selects \
+         on the falloff's form (slower), colours premultiplied by the material (wrong where \
+         products pass `f32::MAX` or underflow), an `f32` formula for overflowing denominators \
+         (loses subnormal factors the fuzz campaign checks), a ladder without its stop selects \
+         (subnormal products, much slower). A loop the compiler cannot see into (a scene passed \
+         in, several lights) is scalar: that is `raytrace` above, against scalar hand-written \
+         code.\n\
          - **`fragment`**: a per-point shininess makes the exponent's plan a per-lane value, so \
-         besides both `Auto` forms the squaring ladder runs all eleven steps with a select each \
-         (about 20%), and the windowed-attenuation form, kept bit for bit `Attenuation::factor`, \
-         costs two divisions even for a polynomial light (about 10%). The hand-written loop \
-         calls `powf` once per point and has neither.\n\
+         both `Auto` forms run for every point and the squaring ladder runs all eleven steps with \
+         two selects each (about 20%), and the windowed-attenuation form, kept bit for bit \
+         `Attenuation::factor`, costs two divisions even for a polynomial light (about 10%). The \
+         hand-written loop calls `powf` once per point and has neither.\n\
          - **`batch_frac`** needs `Poly7` (degree 7 `log2`, degree 5 `exp2`) to stay as 8-bit \
          exact as `powf`; every cheaper strategy fails that criterion (table below), and Poly7's \
          two dependent polynomial chains cost about half as much again as the rest of the \

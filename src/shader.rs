@@ -54,7 +54,10 @@ use crate::visibility::{Unshadowed, Visibility};
 /// crate's models, a point's code has no loop, no call and no branch on the data: rare inputs are
 /// selects, not fallbacks. So a loop over points that builds its scene where it shades (the light
 /// count is then visible to the compiler, as in the example above) is vectorised by LLVM like
-/// hand-written shading code, four points per instruction on any x86-64. Two or more lights, a
+/// hand-written shading code, four points per instruction on any x86-64; for one material
+/// ([`shade`](Self::shade), [`shade_visible`](Self::shade_visible)) a whole shininess then also
+/// skips the polynomial form of [`PowStrategy::Auto`](crate::PowStrategy::Auto), whose choice
+/// becomes a branch in the compiled loop. Two or more lights, a
 /// [`SpotLight`](crate::SpotLight), a light or model from outside the crate, or a scene the
 /// compiler cannot see into take the light loop, one point at a time. Both give the same result
 /// (bit for bit wherever no squared length under- or overflows `f32`). docs/performance.md measures
@@ -471,6 +474,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// overflows `f32` (there the full-range formula is the more exact one): the same operations
     /// in the same order, `FlatAttenuation` being `Attenuation::factor`'s own. Tested in
     /// tests/shader.rs for every model, falloff, viewer, visibility and per-point surface.
+    ///
+    /// `SHARED`: `surface` is the shader's own, so its exponent is the same at every point, which
+    /// lets a whole one skip the polynomial (see `auto_pow_fixed`).
     #[inline(always)]
     fn one_light<const SHARED: bool>(
         &self,
