@@ -480,6 +480,43 @@ fn parallel_1m(c: &mut Criterion) {
     group.finish();
 }
 
+/// 8-bit output: `linear_to_srgb8` (a search over the level thresholds) against the same levels
+/// computed through `srgb_encode` (`powf`) and `quantize_u8`, over 4096 shaded colours.
+fn srgb8_4096(c: &mut Criterion) {
+    let n = 4096;
+    let mut rng = bench_scene::Rng(0x5eb8);
+    let colours: Vec<Vec3> = (0..n)
+        .map(|_| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()))
+        .collect();
+    let mut out = vec![[0u8; 3]; n];
+    let pipeline = |c: Vec3| [c.x, c.y, c.z].map(|x| phong::quantize_u8(phong::srgb_encode(x)));
+    // Before timing: the two agree except within a few ulps of a level boundary.
+    let differ = colours
+        .iter()
+        .filter(|&&c| phong::linear_to_srgb8(c) != pipeline(c))
+        .count();
+    assert!(differ <= 1, "{differ} colours differ");
+    let mut g = c.benchmark_group("srgb8_4096");
+    g.throughput(Throughput::Elements(n as u64))
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    g.bench_function("linear_to_srgb8", |b| {
+        b.iter(|| {
+            for (o, &c) in out.iter_mut().zip(black_box(&colours)) {
+                *o = phong::linear_to_srgb8(c);
+            }
+        })
+    });
+    g.bench_function("encode_then_quantize", |b| {
+        b.iter(|| {
+            for (o, &c) in out.iter_mut().zip(black_box(&colours)) {
+                *o = pipeline(c);
+            }
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     phong_4096,
@@ -488,6 +525,7 @@ criterion_group!(
     blinn_1m,
     pow_4096,
     levels_4096,
-    parallel_1m
+    parallel_1m,
+    srgb8_4096
 );
 criterion_main!(benches);

@@ -7,6 +7,7 @@
 use glam::Vec3;
 
 use crate::math;
+use crate::srgb8;
 
 /// Linear → sRGB transfer function (IEC 61966-2-1), exact piecewise form.
 ///
@@ -125,21 +126,30 @@ pub fn quantize_u8(y: f32) -> u8 {
     (math::clamp_or_lo(y, 0.0, 1.0) * 255.0 + 0.5) as u8
 }
 
-/// A linear colour to 8-bit sRGB: [`srgb_encode`] then [`quantize_u8`], per channel.
+/// A linear colour to 8-bit sRGB, per channel: the level nearest the exact sRGB value, ties up.
+///
+/// ```text
+/// level(c) = ⌊255 · srgb(clamp(c, 0, 1)) + ½⌋      (srgb: the formula of `srgb_encode`, exact)
+/// ```
+///
+/// No `powf`: each channel is a search over the 255 level boundaries, precomputed as `f32`
+/// thresholds (eight comparisons), so the result is the same on every platform and with `libm`.
+/// [`quantize_u8`]`(`[`srgb_encode`]`(c))` computes the same level in `f32` arithmetic and agrees
+/// except where `c` lies within the `f32` rounding of `powf` (about `10⁻⁷` relative) of a level
+/// boundary.
+///
+/// **Degenerate input:** NaN and negatives give 0; values above 1 (and `+∞`) give 255.
 ///
 /// ```
 /// use glam::Vec3;
 /// let mid = phong::srgb_decode(128.0 / 255.0);
 /// assert_eq!(phong::linear_to_srgb8(Vec3::new(0.0, 1.0, mid)), [0, 255, 128]);
+/// assert_eq!(phong::linear_to_srgb8(Vec3::new(f32::NAN, -1.0, 2.0)), [0, 0, 255]);
 /// ```
 #[must_use]
 #[inline]
 pub fn linear_to_srgb8(c: Vec3) -> [u8; 3] {
-    [
-        quantize_u8(srgb_encode(c.x)),
-        quantize_u8(srgb_encode(c.y)),
-        quantize_u8(srgb_encode(c.z)),
-    ]
+    [srgb8::level(c.x), srgb8::level(c.y), srgb8::level(c.z)]
 }
 
 #[cfg(test)]

@@ -121,6 +121,7 @@ mod serde_validation;
 mod shade;
 mod shader;
 mod shading_rate;
+mod srgb8;
 mod surface;
 mod terms;
 mod triangle;
