@@ -514,6 +514,23 @@ fn srgb8_4096(c: &mut Criterion) {
             }
         })
     });
+    // A frame's worth of shading: linear `f32` output against 8-bit RGBA written directly.
+    let (p, nn) = points(n, 0x5eed);
+    let lights = [light()];
+    let scene = scene(&lights);
+    let m = material(32.0);
+    let model = Phong::default();
+    let mut soa = soa_of(&p, &nn);
+    let mut frame = vec![[0u8; 4]; n];
+    g.bench_function("batch_f32", |b| {
+        b.iter(|| batch_run(Level::detect(), black_box(&model), &m, &scene, &mut soa))
+    });
+    g.bench_function("batch_rgba8", |b| {
+        b.iter(|| {
+            let (pos, nor, _) = soa.split();
+            phong::shade_batch_rgba8(black_box(&model), &m, &scene, pos, nor, &mut frame)
+        })
+    });
     g.finish();
 }
 

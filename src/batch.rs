@@ -98,6 +98,14 @@
 //! `4e-4` (`shade` computes `(N·H)²` from `L + V`, whose error grows only as
 //! `2⁻²⁴ / ‖L + V‖`). From finite input no NaN is produced.
 //!
+//! ## 8-bit output
+//!
+//! [`shade_batch_rgba8`] and [`shade_batch_xrgb8`] write a frame's pixels directly, as
+//! `[r, g, b, 255]` or `0x00RRGGBB`: the points are shaded 256 at a time into a buffer on the
+//! stack and each chunk is encoded by [`linear_to_srgb8`](crate::linear_to_srgb8) while it is in
+//! the cache. The levels are exactly those of this module's `f32` output; no allocation, so they
+//! work without `alloc`.
+//!
 //! ## Many cores
 //!
 //! Every point is shaded from its own inputs and the call's constants alone, so a batch split
@@ -248,6 +256,211 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
         return Err(UnsupportedLevel(level));
     }
     Ok(run(level, model, material, scene, positions, normals, out))
+}
+
+/// Shades a batch straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
+/// `[r, g, b] = linear_to_srgb8(shade(…, p[i], n[i]).total())`.
+///
+/// The points are shaded in chunks of 256 into a buffer on the stack (3 KiB, no allocation) by the
+/// same kernel as [`shade_batch`], and each chunk is encoded by
+/// [`linear_to_srgb8`](crate::linear_to_srgb8) (a table search, no `powf`) before the next: the
+/// linear colours never leave the cache. Alpha is 255.
+///
+/// **Domain:** as [`shade_batch`]. **Returns** the number of points shaded: the shortest of the
+/// six input slices and `out` (debug builds assert they are equal); entries past it are untouched.
+/// **Degenerate input:** as [`shade_batch`]; colours above 1 give 255, so no NaN reaches a
+/// channel. The levels are those of [`shade_batch`]'s own `f32` output, bit for bit the same
+/// encoding; against the scalar [`shade`](crate::shade) they differ by one level where the two
+/// colours straddle a level boundary (the rate is in docs/accuracy.md for `f32` against `f64`).
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, SoaVec3, Viewer};
+///
+/// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+/// let material = Material::try_from_color(Vec3::new(1.0, 0.5, 0.0), 32.0)?;
+/// let (px, py, pz) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+/// // Facing the sun, side-on, facing away.
+/// let (nx, ny, nz) = ([0.0, 1.0, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, -1.0]);
+/// let mut frame = [[0u8; 4]; 3];
+/// let n = phong::shade_batch_rgba8(
+///     &Phong::default(),
+///     &material,
+///     &scene,
+///     SoaVec3::new(&px, &py, &pz),
+///     SoaVec3::new(&nx, &ny, &nz),
+///     &mut frame,
+/// );
+/// assert_eq!(n, 3);
+/// assert_eq!(frame[0], [255, 188, 0, 255]); // srgb(0.5) is level 188
+/// assert_eq!(frame[2], [0, 0, 0, 255]);
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub fn shade_batch_rgba8<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out: &mut [[u8; 4]],
+) -> usize {
+    let level = Level::detect();
+    let n = out.len();
+    chunked(
+        level,
+        model,
+        material,
+        scene,
+        positions,
+        normals,
+        n,
+        |i, rgb| {
+            let [r, g, b] = rgb;
+            out[i] = [r, g, b, 255];
+        },
+    )
+}
+
+/// Shades a batch straight into a `0x00RRGGBB` frame (the `u32` pixels that minifb and
+/// softbuffer take): `out[i] = r << 16 | g << 8 | b` with `[r, g, b]` as in
+/// [`shade_batch_rgba8`], the top byte 0.
+///
+/// **Domain, returns, degenerate input:** as [`shade_batch_rgba8`].
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, SoaVec3, Viewer};
+///
+/// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+/// let material = Material::try_from_color(Vec3::new(1.0, 0.5, 0.0), 32.0)?;
+/// let zeros = [0.0; 1];
+/// let mut frame = [0u32; 1];
+/// phong::shade_batch_xrgb8(
+///     &Phong::default(),
+///     &material,
+///     &scene,
+///     SoaVec3::new(&zeros, &zeros, &zeros),
+///     SoaVec3::new(&zeros, &zeros, &[1.0]),
+///     &mut frame,
+/// );
+/// assert_eq!(frame[0], 0x00ff_bc00);
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out: &mut [u32],
+) -> usize {
+    let level = Level::detect();
+    let n = out.len();
+    chunked(
+        level,
+        model,
+        material,
+        scene,
+        positions,
+        normals,
+        n,
+        |i, [r, g, b]| {
+            out[i] = u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b);
+        },
+    )
+}
+
+/// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: [`UnsupportedLevel`]
+/// (having written nothing) where this CPU or build cannot run it.
+pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out: &mut [[u8; 4]],
+) -> Result<usize, UnsupportedLevel> {
+    if !level.is_supported() {
+        return Err(UnsupportedLevel(level));
+    }
+    let n = out.len();
+    Ok(chunked(
+        level,
+        model,
+        material,
+        scene,
+        positions,
+        normals,
+        n,
+        |i, [r, g, b]| {
+            out[i] = [r, g, b, 255];
+        },
+    ))
+}
+
+/// Points per chunk of the 8-bit outputs: a multiple of the kernel's 16 lanes, so the chunks
+/// group the points into vectors as one whole call would.
+const CHUNK: usize = 256;
+
+/// Shades the first `min(len, out_len)` points chunk by chunk into a stack buffer and hands each
+/// point's 8-bit sRGB colour to `write(i, rgb)`; returns the count.
+#[allow(clippy::too_many_arguments)]
+fn chunked<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    out_len: usize,
+    mut write: impl FnMut(usize, [u8; 3]),
+) -> usize {
+    debug_assert!(
+        positions.x.len() == positions.y.len()
+            && positions.x.len() == positions.z.len()
+            && normals.x.len() == positions.x.len()
+            && normals.y.len() == positions.x.len()
+            && normals.z.len() == positions.x.len()
+            && out_len == positions.x.len(),
+        "shade_batch_*8: the six input slices and the output must have the same length"
+    );
+    let n = positions.len().min(normals.len()).min(out_len);
+    let kernel = scene
+        .lights
+        .iter()
+        .all(|l| l.lane_light().is_some())
+        .then(|| kernel::Setup::new(model, material, scene));
+    let (mut r, mut g, mut b) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
+    let mut start = 0;
+    while start < n {
+        let end = n.min(start + CHUNK);
+        let range = start..end;
+        let pos = SoaVec3::new(
+            &positions.x[range.clone()],
+            &positions.y[range.clone()],
+            &positions.z[range.clone()],
+        );
+        let nor = SoaVec3::new(
+            &normals.x[range.clone()],
+            &normals.y[range.clone()],
+            &normals.z[range],
+        );
+        let len = end - start;
+        let rgb = SoaRgb::new(&mut r[..len], &mut g[..len], &mut b[..len]);
+        match &kernel {
+            Some(k) => dispatch::run_level(level, k, pos, nor, rgb),
+            None => scalar(model, material, scene, pos, nor, rgb),
+        };
+        for j in 0..len {
+            let c = glam::Vec3::new(r[j], g[j], b[j]);
+            write(start + j, crate::linear_to_srgb8(c));
+        }
+        start = end;
+    }
+    n
 }
 
 fn run<M: BatchModel, L: BatchLight>(

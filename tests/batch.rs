@@ -1022,3 +1022,93 @@ fn unsaturated_points_of_a_call_that_could_saturate_are_as_accurate() {
         }
     }
 }
+
+/// The 8-bit outputs at every level: each pixel is `linear_to_srgb8` of the same level's `f32`
+/// output, alpha 255, and `xrgb8` packs the same levels; sizes that are not multiples of the
+/// 256-point chunks, random and adversarial points, and a scene the kernel sends to the scalar
+/// path. Against the scalar `shade`, a level may differ by one where the two colours straddle a
+/// level boundary: at most 1 % of the channels here (the two differ by the kernel's documented
+/// error, a few 1e-6, against a level spacing of about 4e-3 where it is narrowest in [0, 1]).
+#[test]
+fn eight_bit_outputs_are_the_encoded_batch_at_every_level() {
+    let mut rng = Rng::new(8);
+    let light_at = Vec3::new(1.2, 1.0, 2.0);
+    let eye = Vec3::new(0.0, 0.0, 3.0);
+    let mut random = random_batch(&mut rng, 256 * 3 + 37);
+    let adversarial = adversarial_batch(&mut rng, light_at, eye);
+    random.p.extend(&adversarial.p);
+    random.n.extend(&adversarial.n);
+    let b = random;
+    let s = b.soa();
+    let len = b.p.len();
+    let m = Material::try_new(Vec3::splat(0.2), Vec3::new(0.9, 0.5, 0.3), Vec3::ONE, 20.5).unwrap();
+    let blinn = BlinnPhong {
+        pow: PowStrategy::Auto,
+        ..BlinnPhong::default()
+    };
+    let kernel_lights: Vec<Light> = vec![point_light(&mut rng, light_at).into()];
+    let mut scalar_lights = kernel_lights.clone();
+    scalar_lights.push(
+        SpotLight::try_new(eye, -Vec3::Z, 0.6, 2.0, Attenuation::None, colors(&mut rng))
+            .unwrap()
+            .into(),
+    );
+    for lights in [&kernel_lights, &scalar_lights] {
+        let scene = Scene {
+            lights,
+            ambient: Vec3::splat(0.02),
+            viewer: Viewer::At(eye),
+        };
+        let (mut near, mut channels) = (0usize, 0usize);
+        for level in Level::supported() {
+            let linear = run(level, &blinn, &m, &scene, &b);
+            let mut rgba = vec![[7u8; 4]; len];
+            let n = phong::shade_batch_rgba8_with_level(
+                level,
+                &blinn,
+                &m,
+                &scene,
+                SoaVec3::new(&s[0], &s[1], &s[2]),
+                SoaVec3::new(&s[3], &s[4], &s[5]),
+                &mut rgba,
+            )
+            .expect("level reported as supported");
+            assert_eq!(n, len);
+            for i in 0..len {
+                let [r, g, bl] = phong::linear_to_srgb8(linear[i]);
+                assert_eq!(rgba[i], [r, g, bl, 255], "{level}: point {i}");
+                let want = phong::linear_to_srgb8(
+                    phong::shade(&blinn, &m, &scene, b.p[i], b.n[i]).total(),
+                );
+                for c in 0..3 {
+                    let d = rgba[i][c].abs_diff(want[c]);
+                    assert!(
+                        d <= 1,
+                        "{level}: point {i} channel {c}: {} vs {}",
+                        rgba[i][c],
+                        want[c]
+                    );
+                    near += usize::from(d == 1);
+                    channels += 1;
+                }
+            }
+        }
+        assert!(
+            near * 100 <= channels,
+            "{near} of {channels} channels one level off"
+        );
+        let mut rgba = vec![[0u8; 4]; len];
+        let mut xrgb = vec![0xffff_ffffu32; len];
+        let soa = |k: usize| &s[k][..];
+        let positions = SoaVec3::new(soa(0), soa(1), soa(2));
+        let normals = SoaVec3::new(soa(3), soa(4), soa(5));
+        phong::shade_batch_rgba8(&blinn, &m, &scene, positions, normals, &mut rgba);
+        let count = phong::shade_batch_xrgb8(&blinn, &m, &scene, positions, normals, &mut xrgb);
+        assert_eq!(count, len);
+        for i in 0..len {
+            let [r, g, bl, a] = rgba[i].map(u32::from);
+            assert_eq!(a, 255);
+            assert_eq!(xrgb[i], r << 16 | g << 8 | bl, "point {i}");
+        }
+    }
+}

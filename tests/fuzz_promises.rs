@@ -22,7 +22,8 @@
 //! non-increasing; `cull_radius` never NaN and `≥ 0`; lobes finite, `≥ 0`, at most 1 unless
 //! energy-normalised, 0 for a missing direction; `PowStrategy::lobe` within
 //! `max_relative_error`; every shading term finite and `≥ 0`; the batch path inside its documented
-//! range at every dispatch level; colour conversions finite and in range.
+//! range at every dispatch level, and its 8-bit frame that range's output encoded (alpha 255);
+//! colour conversions finite and in range.
 
 #[path = "support/batch_range.rs"]
 mod batch_range;
@@ -944,6 +945,19 @@ fn batch(r: &mut Rng, c: &mut Check) {
         )
         .unwrap();
         c.count("shade_batch_with_level", n as u64);
+        // The 8-bit frame: the same level's output encoded, alpha 255.
+        let mut rgba = vec![[0u8; 4]; n];
+        phong::shade_batch_rgba8_with_level(
+            level,
+            &model,
+            &material,
+            &scene,
+            SoaVec3::new(&px, &py, &pz),
+            SoaVec3::new(&nx, &ny, &nz),
+            &mut rgba,
+        )
+        .unwrap();
+        c.count("shade_batch_rgba8_with_level", n as u64);
         for i in 0..n {
             let out = Vec3::new(or[i], og[i], ob[i]);
             let range = batch_range::range(&model, &material, &scene, p[i], nn[i]);
@@ -953,6 +967,12 @@ fn batch(r: &mut Rng, c: &mut Check) {
                     p[i], nn[i]
                 )
             });
+            let [r8, g8, b8] = phong::linear_to_srgb8(out);
+            c.expect(
+                "shade_batch_rgba8_with_level",
+                rgba[i] == [r8, g8, b8, 255],
+                || format!("{level:?} point {i}: {:?} against {out:?}", rgba[i]),
+            );
         }
     }
 }
