@@ -101,7 +101,7 @@
 //! ## 8-bit output
 //!
 //! [`shade_batch_rgba8`] and [`shade_batch_xrgb8`] write a frame's pixels directly, as
-//! `[r, g, b, 255]` or `0x00RRGGBB`: the points are shaded 256 at a time into a buffer on the
+//! `[r, g, b, 255]` or `0x00RRGGBB`: the points are shaded 1024 at a time into a buffer on the
 //! stack and each chunk is encoded by [`linear_to_srgb8`](crate::linear_to_srgb8) while it is in
 //! the cache. The levels are exactly those of this module's `f32` output; no allocation, so they
 //! work without `alloc`.
@@ -261,7 +261,7 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
 /// Shades a batch straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
 /// `[r, g, b] = linear_to_srgb8(shade(…, p[i], n[i]).total())`.
 ///
-/// The points are shaded in chunks of 256 into a buffer on the stack (3 KiB, no allocation) by the
+/// The points are shaded in chunks of 1024 into a buffer on the stack (12 KiB, no allocation) by the
 /// same kernel as [`shade_batch`], and each chunk is encoded by
 /// [`linear_to_srgb8`](crate::linear_to_srgb8) (a table search, no `powf`) before the next: the
 /// linear colours never leave the cache. Alpha is 255.
@@ -306,20 +306,7 @@ pub fn shade_batch_rgba8<M: BatchModel, L: BatchLight>(
     out: &mut [[u8; 4]],
 ) -> usize {
     let level = Level::detect();
-    let n = out.len();
-    chunked(
-        level,
-        model,
-        material,
-        scene,
-        positions,
-        normals,
-        n,
-        |i, rgb| {
-            let [r, g, b] = rgb;
-            out[i] = [r, g, b, 255];
-        },
-    )
+    chunked(level, model, material, scene, positions, normals, out, rgba)
 }
 
 /// Shades a batch straight into a `0x00RRGGBB` frame (the `u32` pixels that minifb and
@@ -357,7 +344,6 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
     out: &mut [u32],
 ) -> usize {
     let level = Level::detect();
-    let n = out.len();
     chunked(
         level,
         model,
@@ -365,11 +351,15 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
         scene,
         positions,
         normals,
-        n,
-        |i, [r, g, b]| {
-            out[i] = u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b);
-        },
+        out,
+        |[r, g, b]| u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b),
     )
+}
+
+/// An RGBA pixel with alpha 255.
+#[inline(always)]
+fn rgba([r, g, b]: [u8; 3]) -> [u8; 4] {
+    [r, g, b, 255]
 }
 
 /// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: [`UnsupportedLevel`]
@@ -386,37 +376,30 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
     if !level.is_supported() {
         return Err(UnsupportedLevel(level));
     }
-    let n = out.len();
     Ok(chunked(
-        level,
-        model,
-        material,
-        scene,
-        positions,
-        normals,
-        n,
-        |i, [r, g, b]| {
-            out[i] = [r, g, b, 255];
-        },
+        level, model, material, scene, positions, normals, out, rgba,
     ))
 }
 
 /// Points per chunk of the 8-bit outputs: a multiple of the kernel's 16 lanes, so the chunks
-/// group the points into vectors as one whole call would.
-const CHUNK: usize = 256;
+/// group the points into vectors as one whole call would. Each chunk pays the kernel's entry
+/// (measured: 4096 points into RGBA at 175 Mpoints/s with 256-point chunks, 189 with 512, 198
+/// with 1024); 1024 keeps the buffer at 12 KiB, within a first-level cache with its output.
+const CHUNK: usize = 1024;
 
-/// Shades the first `min(len, out_len)` points chunk by chunk into a stack buffer and hands each
-/// point's 8-bit sRGB colour to `write(i, rgb)`; returns the count.
+/// Shades the first `min(len, out.len())` points chunk by chunk into a stack buffer and writes
+/// each point's 8-bit sRGB colour as `pack(rgb)`; returns the count.
 #[allow(clippy::too_many_arguments)]
-fn chunked<M: BatchModel, L: BatchLight>(
+#[inline(always)]
+fn chunked<M: BatchModel, L: BatchLight, T>(
     level: Level,
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     positions: SoaVec3<'_>,
     normals: SoaVec3<'_>,
-    out_len: usize,
-    mut write: impl FnMut(usize, [u8; 3]),
+    out: &mut [T],
+    pack: impl Fn([u8; 3]) -> T,
 ) -> usize {
     debug_assert!(
         positions.x.len() == positions.y.len()
@@ -424,20 +407,18 @@ fn chunked<M: BatchModel, L: BatchLight>(
             && normals.x.len() == positions.x.len()
             && normals.y.len() == positions.x.len()
             && normals.z.len() == positions.x.len()
-            && out_len == positions.x.len(),
+            && out.len() == positions.x.len(),
         "shade_batch_*8: the six input slices and the output must have the same length"
     );
-    let n = positions.len().min(normals.len()).min(out_len);
+    let n = positions.len().min(normals.len()).min(out.len());
     let kernel = scene
         .lights
         .iter()
         .all(|l| l.lane_light().is_some())
         .then(|| kernel::Setup::new(model, material, scene));
     let (mut r, mut g, mut b) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
-    let mut start = 0;
-    while start < n {
-        let end = n.min(start + CHUNK);
-        let range = start..end;
+    for (k, out) in out[..n].chunks_mut(CHUNK).enumerate() {
+        let range = k * CHUNK..k * CHUNK + out.len();
         let pos = SoaVec3::new(
             &positions.x[range.clone()],
             &positions.y[range.clone()],
@@ -448,17 +429,15 @@ fn chunked<M: BatchModel, L: BatchLight>(
             &normals.y[range.clone()],
             &normals.z[range],
         );
-        let len = end - start;
-        let rgb = SoaRgb::new(&mut r[..len], &mut g[..len], &mut b[..len]);
+        let len = out.len();
+        let (r, g, b) = (&mut r[..len], &mut g[..len], &mut b[..len]);
         match &kernel {
-            Some(k) => dispatch::run_level(level, k, pos, nor, rgb),
-            None => scalar(model, material, scene, pos, nor, rgb),
+            Some(k) => dispatch::run_level(level, k, pos, nor, SoaRgb::new(r, g, b)),
+            None => scalar(model, material, scene, pos, nor, SoaRgb::new(r, g, b)),
         };
-        for j in 0..len {
-            let c = glam::Vec3::new(r[j], g[j], b[j]);
-            write(start + j, crate::linear_to_srgb8(c));
+        for (o, ((&r, &g), &b)) in out.iter_mut().zip(r.iter().zip(g.iter()).zip(b.iter())) {
+            *o = pack(crate::linear_to_srgb8(glam::Vec3::new(r, g, b)));
         }
-        start = end;
     }
     n
 }

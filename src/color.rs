@@ -132,8 +132,9 @@ pub fn quantize_u8(y: f32) -> u8 {
 /// level(c) = ⌊255 · srgb(clamp(c, 0, 1)) + ½⌋      (srgb: the formula of `srgb_encode`, exact)
 /// ```
 ///
-/// No `powf`: each channel is a search over the 255 level boundaries, precomputed as `f32`
-/// thresholds (eight comparisons), so the result is the same on every platform and with `libm`.
+/// No `powf`: each channel is located among the 255 level boundaries, precomputed as `f32`
+/// thresholds (a table lookup and one comparison), so the result is the same on every platform
+/// and with `libm`.
 /// [`quantize_u8`]`(`[`srgb_encode`]`(c))` computes the same level in `f32` arithmetic and agrees
 /// except where `c` lies within the `f32` rounding of `powf` (about `10⁻⁷` relative) of a level
 /// boundary.

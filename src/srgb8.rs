@@ -273,13 +273,14 @@ const THRESHOLDS: [u32; 257] = [
     u32::MAX,
 ];
 
-/// `x` (non-negative, below 1) falls in bucket `bits(x) >> SHIFT`: its exponent and top five
-/// mantissa bits.
-const SHIFT: u32 = 18;
+/// `x` (non-negative, below 1) falls in bucket `bits(x) >> SHIFT`: its exponent and top seven
+/// mantissa bits. (With five, a 4 KiB table, a bucket holds up to three boundaries; with seven at
+/// most one, and one comparison doubles the throughput.)
+const SHIFT: u32 = 16;
 /// The buckets of the `f32` values in `[0, 1)`.
 const BUCKETS: usize = (0x3f80_0000 >> SHIFT) as usize;
 /// At most this many level boundaries lie inside one bucket (a test checks every bucket).
-const MAX_IN_BUCKET: usize = 3;
+const MAX_IN_BUCKET: usize = 1;
 
 /// `START[b]`: the level of the smallest `f32` in bucket `b`.
 const START: [u8; BUCKETS] = starts();
@@ -301,8 +302,8 @@ const fn starts() -> [u8; BUCKETS] {
 /// The 8-bit sRGB level of a linear value: `⌊255·srgb(x) + ½⌋` with the exact `srgb`, clamped to
 /// `[0, 255]`; NaN and negatives give 0, `+∞` gives 255.
 ///
-/// The level at the start of `x`'s bucket from a 4 KiB table, then one comparison per boundary the
-/// bucket may hold (three, without branches).
+/// The level at the start of `x`'s bucket from a 16 KiB table, then one comparison for the one
+/// boundary the bucket may hold, without a branch.
 #[inline]
 pub(crate) fn level(x: f32) -> u8 {
     // `max_or` maps NaN to 0; the bits of a non-negative `f32` (`+∞` included) order as it does.

@@ -1025,7 +1025,7 @@ fn unsaturated_points_of_a_call_that_could_saturate_are_as_accurate() {
 
 /// The 8-bit outputs at every level: each pixel is `linear_to_srgb8` of the same level's `f32`
 /// output, alpha 255, and `xrgb8` packs the same levels; sizes that are not multiples of the
-/// 256-point chunks, random and adversarial points, and a scene the kernel sends to the scalar
+/// 1024-point chunks, random and adversarial points, and a scene the kernel sends to the scalar
 /// path. Against the scalar `shade`, a level may differ by one where the two colours straddle a
 /// level boundary: at most 1 % of the channels here (the two differ by the kernel's documented
 /// error, a few 1e-6, against a level spacing of about 4e-3 where it is narrowest in [0, 1]).
@@ -1034,7 +1034,7 @@ fn eight_bit_outputs_are_the_encoded_batch_at_every_level() {
     let mut rng = Rng::new(8);
     let light_at = Vec3::new(1.2, 1.0, 2.0);
     let eye = Vec3::new(0.0, 0.0, 3.0);
-    let mut random = random_batch(&mut rng, 256 * 3 + 37);
+    let mut random = random_batch(&mut rng, 1024 + 256 * 3 + 37);
     let adversarial = adversarial_batch(&mut rng, light_at, eye);
     random.p.extend(&adversarial.p);
     random.n.extend(&adversarial.n);
