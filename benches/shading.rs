@@ -534,6 +534,65 @@ fn srgb8_4096(c: &mut Criterion) {
     g.finish();
 }
 
+/// Array-of-structs input (a G-buffer's `Vec3`s): `shade_batch_aos` against what a caller of
+/// `shade_batch` writes, copying into preallocated SoA `Vec`s and the colours back.
+fn aos_4096(c: &mut Criterion) {
+    aos_group(c, "aos_4096", 4096);
+}
+
+/// [`aos_4096`] over a frame's worth of points (2²⁰), where the copies leave the cache.
+fn aos_1m(c: &mut Criterion) {
+    aos_group(c, "aos_1m", 1 << 20);
+}
+
+fn aos_group(c: &mut Criterion, name: &str, n: usize) {
+    let (p, nn) = points(n, 0x5eed);
+    let lights = [light()];
+    let scene = scene(&lights);
+    let m = material(32.0);
+    let model = Phong::default();
+    let mut out = vec![Vec3::ZERO; n];
+    let mut soa: [Vec<f32>; 9] = core::array::from_fn(|_| vec![0.0; n]);
+    let copy_soa = |soa: &mut [Vec<f32>; 9], p: &[Vec3], nn: &[Vec3], out: &mut [Vec3]| {
+        let [px, py, pz, nx, ny, nz, r, g, b] = soa;
+        for i in 0..p.len() {
+            (px[i], py[i], pz[i]) = (p[i].x, p[i].y, p[i].z);
+            (nx[i], ny[i], nz[i]) = (nn[i].x, nn[i].y, nn[i].z);
+        }
+        phong::shade_batch(
+            &model,
+            &m,
+            &scene,
+            SoaVec3::new(px, py, pz),
+            SoaVec3::new(nx, ny, nz),
+            SoaRgb::new(r, g, b),
+        );
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = Vec3::new(r[i], g[i], b[i]);
+        }
+    };
+    let mut check = vec![Vec3::ZERO; n];
+    copy_soa(&mut soa, &p, &nn, &mut check);
+    phong::shade_batch_aos(&model, &m, &scene, &p, &nn, &mut out);
+    assert_eq!(out, check, "shade_batch_aos agrees with shade_batch");
+    let mut g = c.benchmark_group(name);
+    g.throughput(Throughput::Elements(n as u64))
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    if n > 100_000 {
+        g.sample_size(10);
+    }
+    g.bench_function("shade_batch_aos", |b| {
+        b.iter(|| {
+            phong::shade_batch_aos(black_box(&model), &m, &scene, black_box(&p), &nn, &mut out)
+        })
+    });
+    g.bench_function("copy_soa", |b| {
+        b.iter(|| copy_soa(&mut soa, black_box(&p), &nn, &mut out))
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     phong_4096,
@@ -543,6 +602,8 @@ criterion_group!(
     pow_4096,
     levels_4096,
     parallel_1m,
-    srgb8_4096
+    srgb8_4096,
+    aos_4096,
+    aos_1m
 );
 criterion_main!(benches);

@@ -619,6 +619,29 @@ fn main() {
         fmt_opt(batch_f32.zip(batch_rgba8).map(|(f, e)| e / f), 2)
     );
 
+    // ---- Array-of-structs input.
+    let aos_row = |group: &str, n: usize| {
+        let aos = mpts(group, "shade_batch_aos", n, "new");
+        let copy = mpts(group, "copy_soa", n, "new");
+        format!(
+            "| {group} | {} | {} | {} |",
+            fmt_opt(aos, 0),
+            fmt_opt(copy, 0),
+            fmt_opt(aos.zip(copy).map(|(a, c)| a / c), 2)
+        )
+    };
+    let _ = writeln!(
+        md,
+        "## Array-of-structs input (`aos_4096`, `aos_1m`)\n\n\
+         A G-buffer's `&[Vec3]` positions and normals into `&mut [Vec3]` colours: \
+         `shade_batch_aos` (1024 points at a time through stack arrays) against copying into \
+         preallocated structure-of-arrays `Vec`s, one `shade_batch` call and copying back. The \
+         benches' Phong scene at s = 32, best level, million points per second:\n\n\
+         | group | `shade_batch_aos` | copy + `shade_batch` | ratio |\n|---|---:|---:|---:|\n{}\n{}\n",
+        aos_row("aos_4096", 4096),
+        aos_row("aos_1m", 1 << 20)
+    );
+
     // ---- Many cores.
     let serial = mpts("parallel_1m", "serial", 1 << 20, "new");
     let threaded = mpts("parallel_1m", "threads", 1 << 20, "new");

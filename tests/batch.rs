@@ -1112,3 +1112,57 @@ fn eight_bit_outputs_are_the_encoded_batch_at_every_level() {
         }
     }
 }
+
+/// The array-of-structs entry points give `shade_batch`'s results bit for bit (the same kernel on
+/// the same groups of 16: the 1024-point chunks are a multiple of them), with sizes that are not
+/// multiples of a chunk, random and adversarial points, and a scene that takes the scalar path.
+#[test]
+fn array_of_structs_input_gives_the_soa_results() {
+    let mut rng = Rng::new(9);
+    let light_at = Vec3::new(-1.0, 2.0, 1.5);
+    let eye = Vec3::new(0.5, 0.0, 4.0);
+    let mut b = random_batch(&mut rng, 1024 * 2 + 100);
+    let adversarial = adversarial_batch(&mut rng, light_at, eye);
+    b.p.extend(&adversarial.p);
+    b.n.extend(&adversarial.n);
+    let len = b.p.len();
+    let m = Material::try_new(Vec3::splat(0.1), Vec3::new(0.8, 0.6, 0.2), Vec3::ONE, 32.0).unwrap();
+    let phong_model = Phong {
+        pow: PowStrategy::Auto,
+        ..Phong::default()
+    };
+    let kernel_lights: Vec<Light> = vec![
+        point_light(&mut rng, light_at).into(),
+        DirectionalLight::try_new(Vec3::new(0.3, 1.0, 0.2), colors(&mut rng))
+            .unwrap()
+            .into(),
+    ];
+    let mut scalar_lights = kernel_lights.clone();
+    scalar_lights.push(
+        PointLight::try_new(eye, Attenuation::try_unreal(6.0).unwrap(), colors(&mut rng))
+            .unwrap()
+            .into(),
+    );
+    for lights in [&kernel_lights, &scalar_lights] {
+        let scene = Scene {
+            lights,
+            ambient: Vec3::splat(0.02),
+            viewer: Viewer::At(eye),
+        };
+        let want = run(Level::detect(), &phong_model, &m, &scene, &b);
+        let mut out = vec![Vec3::NAN; len];
+        let n = phong::shade_batch_aos(&phong_model, &m, &scene, &b.p, &b.n, &mut out);
+        assert_eq!(n, len);
+        let mut rgba = vec![[0u8; 4]; len];
+        phong::shade_batch_aos_rgba8(&phong_model, &m, &scene, &b.p, &b.n, &mut rgba);
+        for i in 0..len {
+            assert_eq!(
+                out[i].to_array().map(f32::to_bits),
+                want[i].to_array().map(f32::to_bits),
+                "point {i}"
+            );
+            let [r, g, bl] = phong::linear_to_srgb8(want[i]);
+            assert_eq!(rgba[i], [r, g, bl, 255], "point {i}");
+        }
+    }
+}

@@ -22,7 +22,8 @@
 //! non-increasing; `cull_radius` never NaN and `≥ 0`; lobes finite, `≥ 0`, at most 1 unless
 //! energy-normalised, 0 for a missing direction; `PowStrategy::lobe` within
 //! `max_relative_error`; every shading term finite and `≥ 0`; the batch path inside its documented
-//! range at every dispatch level, and its 8-bit frame that range's output encoded (alpha 255);
+//! range at every dispatch level, its 8-bit frame that output encoded (alpha 255), and the
+//! array-of-structs entry point that output bit for bit;
 //! colour conversions finite and in range.
 
 #[path = "support/batch_range.rs"]
@@ -932,6 +933,10 @@ fn batch(r: &mut Rng, c: &mut Check) {
     let col = |v: &[Vec3], k: usize| v.iter().map(|q| q[k]).collect::<Vec<f32>>();
     let (px, py, pz) = (col(&p, 0), col(&p, 1), col(&p, 2));
     let (nx, ny, nz) = (col(&nn, 0), col(&nn, 1), col(&nn, 2));
+    // The array-of-structs entry point: the detected level's output, bit for bit.
+    let mut aos = vec![Vec3::ZERO; n];
+    phong::shade_batch_aos(&model, &material, &scene, &p, &nn, &mut aos);
+    c.count("shade_batch_aos", n as u64);
     for level in Level::supported() {
         let (mut or, mut og, mut ob) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         phong::shade_batch_with_level(
@@ -967,6 +972,12 @@ fn batch(r: &mut Rng, c: &mut Check) {
                     p[i], nn[i]
                 )
             });
+            if level == Level::detect() {
+                let same = aos[i].to_array().map(f32::to_bits) == out.to_array().map(f32::to_bits);
+                c.expect("shade_batch_aos", same, || {
+                    format!("point {i}: {:?} against shade_batch's {out:?}", aos[i])
+                });
+            }
             let [r8, g8, b8] = phong::linear_to_srgb8(out);
             c.expect(
                 "shade_batch_rgba8_with_level",
