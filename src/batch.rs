@@ -396,8 +396,9 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
 /// The points are moved into structure-of-arrays form 1024 at a time on the stack (36 KiB with
 /// the output, no allocation: mind a small thread stack), shaded by [`shade_batch`]'s kernel and
 /// written back, so a caller needs no copy of its arrays. docs/performance.md measures it against
-/// copying into and out of `Vec`s around [`shade_batch`]: about the same speed at 4096 points,
-/// faster over a frame, where the copies leave the cache.
+/// copying into and out of `Vec`s around one [`shade_batch`] call: slower at 4096 points (each
+/// chunk pays the kernel's entry), faster over a frame of 2²⁰ points, where the copies leave the
+/// cache.
 ///
 /// **Domain:** as [`shade_batch`]. **Returns** the number of points shaded: the shortest of the
 /// three slices (debug builds assert they are equal); entries past it are untouched.
