@@ -315,7 +315,8 @@ pub fn shade_batch_rgba8<M: BatchModel, L: BatchLight>(
     out: &mut [[u8; 4]],
 ) -> usize {
     let level = Level::detect();
-    chunked(level, model, material, scene, positions, normals, out, rgba)
+    let shading = Shading::new(level, model, material, scene);
+    chunked(&shading, positions, normals, out, rgba)
 }
 
 /// Shades a batch straight into a `0x00RRGGBB` frame (the `u32` pixels that minifb and
@@ -354,10 +355,7 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
 ) -> usize {
     let level = Level::detect();
     chunked(
-        level,
-        model,
-        material,
-        scene,
+        &Shading::new(level, model, material, scene),
         positions,
         normals,
         out,
@@ -386,7 +384,11 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
         return Err(UnsupportedLevel(level));
     }
     Ok(chunked(
-        level, model, material, scene, positions, normals, out, rgba,
+        &Shading::new(level, model, material, scene),
+        positions,
+        normals,
+        out,
+        rgba,
     ))
 }
 
@@ -429,10 +431,7 @@ pub fn shade_batch_aos<M: BatchModel, L: BatchLight>(
 ) -> usize {
     let level = Level::detect();
     chunked_aos(
-        level,
-        model,
-        material,
-        scene,
+        &Shading::new(level, model, material, scene),
         positions,
         normals,
         out,
@@ -456,10 +455,7 @@ pub fn shade_batch_aos_rgba8<M: BatchModel, L: BatchLight>(
 ) -> usize {
     let level = Level::detect();
     chunked_aos(
-        level,
-        model,
-        material,
-        scene,
+        &Shading::new(level, model, material, scene),
         positions,
         normals,
         out,
@@ -467,20 +463,19 @@ pub fn shade_batch_aos_rgba8<M: BatchModel, L: BatchLight>(
     )
 }
 
-/// Points per chunk of the array-of-structs entry points: nine arrays of 1024 `f32` on the stack.
-/// Each chunk pays the kernel's entry: at 4096 points, 273 Mpoints/s with 512-point chunks and 301
-/// with 1024 (copying into `Vec`s around one `shade_batch` call: 305).
-const CHUNK_AOS: usize = 1024;
+/// Points per chunk of the 8-bit and array-of-structs entry points: a multiple of the kernel's 16
+/// lanes, so the chunks group the points into vectors as one whole call would. Each chunk pays
+/// the kernel's entry. Measured at 4096 points: into RGBA, 175 Mpoints/s with 256-point chunks,
+/// 189 with 512, 198 with 1024; from `&[Vec3]`, 273 with 512 and 301 with 1024 (copying into
+/// `Vec`s around one `shade_batch` call: 305). At 1024 the buffers take 12 KiB (8-bit output) and
+/// 36 KiB (array-of-structs input) of stack.
+const CHUNK: usize = 1024;
 
 /// Shades `min` of the lengths chunk by chunk, transposing each into stack arrays, and writes
 /// `pack(colour)` per point; returns the count.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn chunked_aos<M: BatchModel, L: BatchLight, T>(
-    level: Level,
-    model: &M,
-    material: &Material,
-    scene: &Scene<'_, L>,
+    shading: &Shading<'_, '_, M, L>,
     positions: &[Vec3],
     normals: &[Vec3],
     out: &mut [T],
@@ -491,14 +486,9 @@ fn chunked_aos<M: BatchModel, L: BatchLight, T>(
         "shade_batch_aos*: positions, normals and the output must have the same length"
     );
     let n = positions.len().min(normals.len()).min(out.len());
-    let kernel = scene
-        .lights
-        .iter()
-        .all(|l| l.lane_light().is_some())
-        .then(|| kernel::Setup::new(model, material, scene));
-    let mut soa = [[0.0f32; CHUNK_AOS]; 9];
-    for (k, out) in out[..n].chunks_mut(CHUNK_AOS).enumerate() {
-        let start = k * CHUNK_AOS;
+    let mut soa = [[0.0f32; CHUNK]; 9];
+    for (k, out) in out[..n].chunks_mut(CHUNK).enumerate() {
+        let start = k * CHUNK;
         let len = out.len();
         let [px, py, pz, nx, ny, nz, r, g, b] = &mut soa;
         for (j, (p, q)) in positions[start..start + len]
@@ -511,11 +501,11 @@ fn chunked_aos<M: BatchModel, L: BatchLight, T>(
         }
         let pos = SoaVec3::new(&px[..len], &py[..len], &pz[..len]);
         let nor = SoaVec3::new(&nx[..len], &ny[..len], &nz[..len]);
-        let rgb = SoaRgb::new(&mut r[..len], &mut g[..len], &mut b[..len]);
-        match &kernel {
-            Some(k) => dispatch::run_level(level, k, pos, nor, rgb),
-            None => scalar(model, material, scene, pos, nor, rgb),
-        };
+        shading.shade(
+            pos,
+            nor,
+            SoaRgb::new(&mut r[..len], &mut g[..len], &mut b[..len]),
+        );
         for (j, o) in out.iter_mut().enumerate() {
             *o = pack(Vec3::new(r[j], g[j], b[j]));
         }
@@ -523,41 +513,21 @@ fn chunked_aos<M: BatchModel, L: BatchLight, T>(
     n
 }
 
-/// Points per chunk of the 8-bit outputs: a multiple of the kernel's 16 lanes, so the chunks
-/// group the points into vectors as one whole call would. Each chunk pays the kernel's entry
-/// (measured: 4096 points into RGBA at 175 Mpoints/s with 256-point chunks, 189 with 512, 198
-/// with 1024); 1024 keeps the buffer at 12 KiB, within a first-level cache with its output.
-const CHUNK: usize = 1024;
-
 /// Shades the first `min(len, out.len())` points chunk by chunk into a stack buffer and writes
 /// each point's 8-bit sRGB colour as `pack(rgb)`; returns the count.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn chunked<M: BatchModel, L: BatchLight, T>(
-    level: Level,
-    model: &M,
-    material: &Material,
-    scene: &Scene<'_, L>,
+    shading: &Shading<'_, '_, M, L>,
     positions: SoaVec3<'_>,
     normals: SoaVec3<'_>,
     out: &mut [T],
     pack: impl Fn([u8; 3]) -> T,
 ) -> usize {
     debug_assert!(
-        positions.x.len() == positions.y.len()
-            && positions.x.len() == positions.z.len()
-            && normals.x.len() == positions.x.len()
-            && normals.y.len() == positions.x.len()
-            && normals.z.len() == positions.x.len()
-            && out.len() == positions.x.len(),
+        same_lengths(positions, normals, out.len()),
         "shade_batch_*8: the six input slices and the output must have the same length"
     );
     let n = positions.len().min(normals.len()).min(out.len());
-    let kernel = scene
-        .lights
-        .iter()
-        .all(|l| l.lane_light().is_some())
-        .then(|| kernel::Setup::new(model, material, scene));
     let (mut r, mut g, mut b) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
     for (k, out) in out[..n].chunks_mut(CHUNK).enumerate() {
         let range = k * CHUNK..k * CHUNK + out.len();
@@ -573,10 +543,7 @@ fn chunked<M: BatchModel, L: BatchLight, T>(
         );
         let len = out.len();
         let (r, g, b) = (&mut r[..len], &mut g[..len], &mut b[..len]);
-        match &kernel {
-            Some(k) => dispatch::run_level(level, k, pos, nor, SoaRgb::new(r, g, b)),
-            None => scalar(model, material, scene, pos, nor, SoaRgb::new(r, g, b)),
-        };
+        shading.shade(pos, nor, SoaRgb::new(r, g, b));
         for (o, ((&r, &g), &b)) in out.iter_mut().zip(r.iter().zip(g.iter()).zip(b.iter())) {
             *o = pack(crate::linear_to_srgb8(Vec3::new(r, g, b)));
         }
@@ -594,21 +561,61 @@ fn run<M: BatchModel, L: BatchLight>(
     out: SoaRgb<'_>,
 ) -> usize {
     debug_assert!(
-        positions.x.len() == positions.y.len()
-            && positions.x.len() == positions.z.len()
-            && normals.x.len() == positions.x.len()
-            && normals.y.len() == positions.x.len()
-            && normals.z.len() == positions.x.len()
-            && out.r.len() == positions.x.len()
-            && out.g.len() == positions.x.len()
-            && out.b.len() == positions.x.len(),
+        same_lengths(positions, normals, out.r.len())
+            && out.g.len() == out.r.len()
+            && out.b.len() == out.r.len(),
         "shade_batch: the nine slices must have the same length"
     );
-    if scene.lights.iter().all(|l| l.lane_light().is_some()) {
-        let k = kernel::Setup::new(model, material, scene);
-        dispatch::run_level(level, &k, positions, normals, out)
-    } else {
-        scalar(model, material, scene, positions, normals, out)
+    Shading::new(level, model, material, scene).shade(positions, normals, out)
+}
+
+/// Whether the six input slices and an output of `out_len` have one length.
+fn same_lengths(positions: SoaVec3<'_>, normals: SoaVec3<'_>, out_len: usize) -> bool {
+    let n = positions.x.len();
+    [
+        positions.y.len(),
+        positions.z.len(),
+        normals.x.len(),
+        normals.y.len(),
+        normals.z.len(),
+        out_len,
+    ]
+    .iter()
+    .all(|&m| m == n)
+}
+
+/// A call's shading, chosen once: the vector kernel at `level` when it handles every light of the
+/// scene, else [`scalar`].
+struct Shading<'a, 's, M, L> {
+    level: Level,
+    model: &'a M,
+    material: &'a Material,
+    scene: &'a Scene<'s, L>,
+    kernel: Option<kernel::Setup<'a, M, L>>,
+}
+
+impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
+    fn new(level: Level, model: &'a M, material: &'a Material, scene: &'a Scene<'s, L>) -> Self {
+        let kernel = scene
+            .lights
+            .iter()
+            .all(|l| l.lane_light().is_some())
+            .then(|| kernel::Setup::new(model, material, scene));
+        Shading {
+            level,
+            model,
+            material,
+            scene,
+            kernel,
+        }
+    }
+
+    /// Shades the common prefix of the slices; returns its length.
+    fn shade(&self, pos: SoaVec3<'_>, nor: SoaVec3<'_>, out: SoaRgb<'_>) -> usize {
+        match &self.kernel {
+            Some(k) => dispatch::run_level(self.level, k, pos, nor, out),
+            None => scalar(self.model, self.material, self.scene, pos, nor, out),
+        }
     }
 }
 
