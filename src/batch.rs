@@ -369,8 +369,23 @@ fn rgba([r, g, b]: [u8; 3]) -> [u8; 4] {
     [r, g, b, 255]
 }
 
-/// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: [`UnsupportedLevel`]
-/// (having written nothing) where this CPU or build cannot run it.
+/// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: the same pixels as
+/// [`shade_batch_with_level`]'s output at that level, encoded.
+///
+/// **Domain and degenerate input:** as [`shade_batch_rgba8`]. **Returns** the number of points
+/// shaded, or [`UnsupportedLevel`] (having written nothing) where this CPU or build cannot run
+/// `level`.
+///
+/// ```
+/// use phong::Level;
+/// let mut frame = [[0u8; 4]; 0];
+/// let scene = phong::Scene::<phong::PointLight> { lights: &[], ambient: glam::Vec3::ZERO, viewer: phong::Viewer::Infinite(glam::Vec3::Z) };
+/// let m = phong::Material::try_from_color(glam::Vec3::ONE, 8.0)?;
+/// let none = phong::SoaVec3::new(&[], &[], &[]);
+/// let n = phong::shade_batch_rgba8_with_level(Level::Portable, &phong::Lambert::default(), &m, &scene, none, none, &mut frame);
+/// assert_eq!(n, Ok(0));
+/// # Ok::<(), phong::PhongError>(())
+/// ```
 pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
     level: Level,
     model: &M,

@@ -135,6 +135,15 @@ fn random_batch(rng: &mut Rng, len: usize) -> Batch {
     Batch { p, n }
 }
 
+/// `len` random points followed by the adversarial ones for a light at `light`, a viewer at `eye`.
+fn random_then_adversarial(rng: &mut Rng, len: usize, light: Vec3, eye: Vec3) -> Batch {
+    let mut b = random_batch(rng, len);
+    let adversarial = adversarial_batch(rng, light, eye);
+    b.p.extend(&adversarial.p);
+    b.n.extend(&adversarial.n);
+    b
+}
+
 /// Adversarial points for a scene with a light at `light`, a viewer at `eye`.
 fn adversarial_batch(rng: &mut Rng, light: Vec3, eye: Vec3) -> Batch {
     let mut p = Vec::new();
@@ -1034,11 +1043,7 @@ fn eight_bit_outputs_are_the_encoded_batch_at_every_level() {
     let mut rng = Rng::new(8);
     let light_at = Vec3::new(1.2, 1.0, 2.0);
     let eye = Vec3::new(0.0, 0.0, 3.0);
-    let mut random = random_batch(&mut rng, 1024 + 256 * 3 + 37);
-    let adversarial = adversarial_batch(&mut rng, light_at, eye);
-    random.p.extend(&adversarial.p);
-    random.n.extend(&adversarial.n);
-    let b = random;
+    let b = random_then_adversarial(&mut rng, 1024 + 256 * 3 + 37, light_at, eye);
     let s = b.soa();
     let len = b.p.len();
     let m = Material::try_new(Vec3::splat(0.2), Vec3::new(0.9, 0.5, 0.3), Vec3::ONE, 20.5).unwrap();
@@ -1121,10 +1126,7 @@ fn array_of_structs_input_gives_the_soa_results() {
     let mut rng = Rng::new(9);
     let light_at = Vec3::new(-1.0, 2.0, 1.5);
     let eye = Vec3::new(0.5, 0.0, 4.0);
-    let mut b = random_batch(&mut rng, 1024 * 2 + 100);
-    let adversarial = adversarial_batch(&mut rng, light_at, eye);
-    b.p.extend(&adversarial.p);
-    b.n.extend(&adversarial.n);
+    let b = random_then_adversarial(&mut rng, 1024 * 2 + 100, light_at, eye);
     let len = b.p.len();
     let m = Material::try_new(Vec3::splat(0.1), Vec3::new(0.8, 0.6, 0.2), Vec3::ONE, 32.0).unwrap();
     let phong_model = Phong {
