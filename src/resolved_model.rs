@@ -80,6 +80,13 @@ impl ResolvedModel {
         self.diffuse_scale * math::max_or(n_dot_l, 0.0)
     }
 
+    /// Whether [`gate`](Self::gate)`(0)` is 0 (the step and cosine gates): a zero normal or
+    /// light direction, whose `N·L` is 0, then has no highlight whatever its lobe's base.
+    #[inline(always)]
+    pub(crate) fn closes_at_zero(&self) -> bool {
+        self.gate[2] == 0.0
+    }
+
     /// The gate's weight for `N·L`: `[N·L > 0]`, `max(N·L, 0)` or 1 (the cosine for normalised
     /// lobes). In `[0, 1]` for `N·L ≤ 1`; NaN reads as 0 for the step and cosine gates.
     #[must_use]

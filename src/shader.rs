@@ -198,6 +198,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             material.diffuse(),
             material.specular(),
             material.shininess(),
+            true,
         );
         shader
     }
@@ -211,11 +212,11 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// product that overflows here is `+∞`, which fails the test: the check itself cannot
     /// misjudge. Models from outside the crate are never `safe`.
     #[inline(always)]
-    fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32) -> Prepared {
+    fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32, shared: bool) -> Prepared {
         let specular = plan_for(self.resolved, s);
-        // The one-light path saturates with one `min` per channel either way (see `one_light`):
-        // it needs no test, and a per-point surface would pay for it at every point.
-        let safe = self.one.is_none()
+        // The one-light path with a per-point surface saturates either way (see `one_light`): the
+        // test would cost more at every point than the `min`s it could skip.
+        let safe = (shared || self.one.is_none())
             && self.resolved.is_some_and(|r| {
                 // The sums themselves (before the reflectances scale them), then the total.
                 let sums = [
@@ -354,6 +355,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             sanitize_colour(surface.diffuse),
             sanitize_colour(surface.specular),
             s,
+            false,
         );
         self.run::<false>(&p, position, normal, visibility)
     }
@@ -505,14 +507,22 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let n_dot_l = n.dot(l);
         let wd = r.diffuse(n_dot_l);
         // A missing direction (zero vector) means no highlight: Phong's base needs the mask for
-        // a zero N only (a zero L or V gives R·V = 0), Blinn-Phong's for all three.
+        // a zero N only (a zero L or V gives R·V = 0), Blinn-Phong's for all three. A step or
+        // cosine gate is already 0 where N or L is zero (N·L = 0 there), so with one of those
+        // only Blinn-Phong's V needs it. The gate is the same at every point: the compiler keeps
+        // this a branch, and the tests it skips are not run.
+        let gated = r.closes_at_zero();
         let ws = if phong || blinn {
             let (base, present) = if blinn {
-                let present = n != Vec3::ZERO && v != Vec3::ZERO && l != Vec3::ZERO;
+                let present = if gated {
+                    v != Vec3::ZERO
+                } else {
+                    n != Vec3::ZERO && v != Vec3::ZERO && l != Vec3::ZERO
+                };
                 (n_dot_h_squared(n, l, v), present)
             } else {
                 let base = ResolvedModel::phong_base(n_dot_l, n.dot(v), l.dot(v));
-                (base, n != Vec3::ZERO)
+                (base, gated || n != Vec3::ZERO)
             };
             let p = match surface.specular.plan {
                 PowPlan::Split {
@@ -535,6 +545,16 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let diffuse = one.diffuse * math::min_or(fv * wd, math::MAX);
         let specular = one.specular * math::min_or(fv * ws, math::MAX);
         let (ka, kd, ks) = (surface.ka, surface.kd, surface.ks);
+        if SHARED && surface.safe {
+            // Nothing reaches f32::MAX (see `prepare`), so the `min`s below would change nothing.
+            // `safe` is the same at every point: in a vectorised loop this is a branch.
+            return Terms {
+                ambient: ka * ambient,
+                diffuse: kd * diffuse,
+                specular: ks * specular,
+                emission: self.emission,
+            };
+        }
         // Saturated always: in a vectorised loop the unsaturated return of the light loop's
         // `safe` case would be computed beside this one, not instead of it, and `min` leaves
         // every value below f32::MAX as it is, so the bits are the same.
