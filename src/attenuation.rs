@@ -176,21 +176,26 @@ impl FlatAttenuation {
         let d = math::clamp_or_lo(d, 0.0, math::MAX);
         let dd = math::max_or(d, self.min_d);
         let den = self.c + dd * (self.l + self.q * dd);
-        // `radius` and the form are the same at every point: in a vectorised loop these are
-        // branches, not selects, and the window and the second division run only where needed.
+        // `radius` is the same at every point: in a vectorised loop this stays a branch, and the
+        // window runs only for the windowed forms.
         let w = if self.radius < f32::INFINITY {
             window(d, self.radius)
         } else {
             1.0
         };
+        // The inverse-square forms divide twice by `dd`, as `factor` does: `dd²` underflows for
+        // `dd` below 1e-19 and overflows above 1.8e19, while `P/dd/dd` is still representable.
+        // The second division is chosen on the form alone, outside the per-point choice below,
+        // so that it too stays a branch.
+        let a = if self.twice {
+            dd
+        } else {
+            math::max_or(den, self.floor)
+        };
+        let q = self.power * w / a;
+        let q = if self.twice { q / dd } else { q };
         let f = if den < f32::INFINITY || !self.wide {
-            // The inverse-square forms divide twice by `dd`, as `factor` does: `dd²` underflows
-            // for `dd` below 1e-19 and overflows above 1.8e19, while `P/dd/dd` is representable.
-            if self.twice {
-                self.power * w / dd / dd
-            } else {
-                self.power * w / math::max_or(den, self.floor)
-            }
+            q
         } else {
             // As `polynomial_overflowed` (the polynomial forms: power 1, no window).
             let (c, l, q, dd) = (self.c as f64, self.l as f64, self.q as f64, dd as f64);
