@@ -154,6 +154,8 @@
 //! # Ok::<(), phong::PhongError>(())
 //! ```
 
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod dispatch;
 mod kernel;
 mod level;

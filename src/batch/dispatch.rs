@@ -1,4 +1,4 @@
-//! The library's only `unsafe` code (three calls):
+//! The library's only `unsafe` code (three calls; the AVX-512 kernel's tests have their own):
 //! calling a `#[target_feature]` kernel after checking the CPU.
 
 #![allow(unsafe_code)]
@@ -19,13 +19,13 @@ pub(super) fn run_level<M: BatchModel, L: BatchLight>(
 ) -> usize {
     #[cfg(target_arch = "x86_64")]
     {
-        use super::x86;
+        use super::{avx512, x86};
         match level {
             Level::Avx512 if level.is_supported() => {
                 // SAFETY: `is_supported` checked AVX-512F, AVX-512VL, AVX2 and FMA (at run time
                 // with `std`, in the build's target features without), which is every feature
-                // `x86::avx512` enables.
-                return unsafe { x86::avx512(k, pos, nor, out) };
+                // `avx512::avx512` enables.
+                return unsafe { avx512::avx512(k, pos, nor, out) };
             }
             Level::Avx2 if level.is_supported() => {
                 // SAFETY: `is_supported` checked AVX2 and FMA, the features `x86::avx2` enables.

@@ -1,8 +1,9 @@
-//! The batch kernel: one source, 16 points at a time, compiled once per level (`Portable`,
-//! `Sse2`, `Avx2`, `Avx512`) with that level's target features and inverse square root.
+//! The portable batch kernel: one source, 16 points at a time, compiled for the `Portable`,
+//! `Sse2` and `Avx2` levels (the `Avx512` level runs the intrinsics kernel in `avx512.rs`, which
+//! follows the same algorithm).
 //!
 //! Every quantity is a `[f32; 16]` and every operation a loop over the 16 lanes with no
-//! cross-lane dependency, so LLVM turns each into one AVX-512 instruction, two AVX2 ones or four SSE2 ones. Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:
+//! cross-lane dependency, so LLVM turns each into two AVX2 instructions or four SSE2 ones. Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:
 //!
 //! ```text
 //! N = n·rsqrt(n·n),  V̂ = V·rsqrt(V·V),  L̂ = L·rsqrt(L·L),  d = (L·L)·rsqrt(L·L)

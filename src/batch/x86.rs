@@ -1,5 +1,5 @@
-//! The AVX-512, AVX2 and SSE2 levels: the one kernel source compiled with each instruction set,
-//! and its inverse square root.
+//! The AVX2 and SSE2 levels: the portable kernel compiled with each instruction set, and its
+//! inverse square root.
 //!
 //! Each function here is safe; the `#[target_feature]` ones may only be *called* where the CPU
 //! has the features, which `dispatch` checks. The intrinsics they use are safe inside them (the
@@ -7,9 +7,8 @@
 //! vector registers without `unsafe` (its size check is at compile time).
 
 use core::arch::x86_64::{
-    __m128, __m256, __m512, _mm_mul_ps, _mm_rsqrt_ps, _mm_set1_ps, _mm_sub_ps, _mm256_fnmadd_ps,
-    _mm256_mul_ps, _mm256_rsqrt_ps, _mm256_set1_ps, _mm512_fnmadd_ps, _mm512_mul_ps,
-    _mm512_rsqrt14_ps, _mm512_set1_ps,
+    __m128, __m256, _mm_mul_ps, _mm_rsqrt_ps, _mm_set1_ps, _mm_sub_ps, _mm256_fnmadd_ps,
+    _mm256_mul_ps, _mm256_rsqrt_ps, _mm256_set1_ps,
 };
 
 use bytemuck::must_cast;
@@ -17,29 +16,6 @@ use bytemuck::must_cast;
 use super::kernel::{Lanes, Setup, run};
 use super::prepare::{BatchLight, BatchModel};
 use super::soa::{SoaRgb, SoaVec3};
-
-/// AVX-512F/VL with AVX2 and FMA: `vrsqrt14ps` (relative error ≤ 2⁻¹⁴) and one Newton step, on
-/// all 16 lanes at once.
-///
-/// The same source as the other levels, which LLVM compiles to 16-lane instructions here: as
-/// fast, in the recorded levels table, as the intrinsics kernel it replaced (see
-/// docs/performance.md).
-#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-pub(super) fn avx512<M: BatchModel, L: BatchLight>(
-    k: &Setup<'_, M, L>,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    let rsqrt = |x: Lanes| -> Lanes {
-        let x: __m512 = must_cast(x);
-        let y = _mm512_rsqrt14_ps(x);
-        let hx = _mm512_mul_ps(x, _mm512_set1_ps(0.5));
-        let t = _mm512_fnmadd_ps(hx, _mm512_mul_ps(y, y), _mm512_set1_ps(1.5));
-        must_cast(_mm512_mul_ps(y, t))
-    };
-    run(k, pos, nor, out, rsqrt)
-}
 
 /// AVX2 + FMA: `vrsqrtps` (relative error ≤ 1.5·2⁻¹²) and one Newton step, on two halves.
 #[target_feature(enable = "avx2,fma")]
