@@ -593,6 +593,118 @@ fn aos_group(c: &mut Criterion, name: &str, n: usize) {
     g.finish();
 }
 
+/// `gbuffer_4096`: deferred shading of a G-buffer with a per-point surface (textured colours,
+/// shininess uniform in [2, 128], fractional) and a shadow factor per point, through
+/// `shade_gbuffer` into `f32` and into 8-bit RGBA, against `batch_frac` (the same scene and
+/// points with one material of shininess 20.5, `shade_batch`).
+fn gbuffer_4096(c: &mut Criterion) {
+    let n = 4096;
+    let (p, nn) = points(n, 0x5eed);
+    let lights = [light()];
+    let scene = scene(&lights);
+    let m20 = material(20.5);
+    let model = phong_model(PowStrategy::Auto);
+    let level = Level::detect();
+    let mut soa = soa_of(&p, &nn);
+    let mut rng = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let texel: Vec<[f32; 3]> = (0..n).map(|_| [next(), next(), next()]).collect();
+    let (tr, tg, tb): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+        texel.iter().map(|t| t[0]).collect(),
+        texel.iter().map(|t| t[1]).collect(),
+        texel.iter().map(|t| t[2]).collect(),
+    );
+    let strength: Vec<f32> = (0..n).map(|_| next()).collect();
+    let shininess: Vec<f32> = (0..n).map(|_| 2.0 + 126.0 * next()).collect();
+    let shadow: Vec<f32> = (0..n)
+        .map(|_| {
+            let u = next();
+            if u < 0.3 {
+                1.0
+            } else if u < 0.4 {
+                next()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let (px, py, pz): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+        p.iter().map(|v| v.x).collect(),
+        p.iter().map(|v| v.y).collect(),
+        p.iter().map(|v| v.z).collect(),
+    );
+    let (nx, ny, nz): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+        nn.iter().map(|v| v.x).collect(),
+        nn.iter().map(|v| v.y).collect(),
+        nn.iter().map(|v| v.z).collect(),
+    );
+    let texels = SoaVec3::new(&tr, &tg, &tb);
+    let buffer = phong::GBuffer::new(SoaVec3::new(&px, &py, &pz), SoaVec3::new(&nx, &ny, &nz))
+        .with_surface(phong::SoaSurface {
+            ambient: texels,
+            diffuse: texels,
+            specular: SoaVec3::new(&strength, &strength, &strength),
+            shininess: &shininess,
+        })
+        .with_visibility(&shadow);
+    let (mut r, mut gr, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut frame = vec![[0u8; 4]; n];
+
+    // Agreement before timing: the G-buffer call against the scalar path point by point.
+    phong::shade_gbuffer(
+        &model,
+        &m20,
+        &scene,
+        &buffer,
+        SoaRgb::new(&mut r, &mut gr, &mut b),
+    );
+    let shader = phong::Shader::new(model, &m20, &scene);
+    for i in 0..n {
+        let surface =
+            phong::Surface::textured(Vec3::from(texel[i]), Vec3::splat(strength[i]), shininess[i]);
+        let want = shader
+            .shade_surface(p[i], nn[i], &surface, [shadow[i]])
+            .total();
+        assert_close("gbuffer", Vec3::new(r[i], gr[i], b[i]), want, i);
+    }
+
+    let mut g = c.benchmark_group("gbuffer_4096");
+    g.throughput(Throughput::Elements(n as u64))
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    g.bench_function("batch_frac", |bch| {
+        bch.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
+    });
+    g.bench_function("gbuffer_f32", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer(
+                black_box(&model),
+                &m20,
+                &scene,
+                black_box(&buffer),
+                SoaRgb::new(&mut r, &mut gr, &mut b),
+            )
+        })
+    });
+    g.bench_function("gbuffer_rgba8", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer_rgba8(
+                black_box(&model),
+                &m20,
+                &scene,
+                black_box(&buffer),
+                &mut frame,
+            )
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     phong_4096,
@@ -604,6 +716,7 @@ criterion_group!(
     parallel_1m,
     srgb8_4096,
     aos_4096,
-    aos_1m
+    aos_1m,
+    gbuffer_4096
 );
 criterion_main!(benches);

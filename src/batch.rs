@@ -157,6 +157,7 @@
 #[cfg(target_arch = "x86_64")]
 mod avx512;
 mod dispatch;
+mod gbuffer;
 mod kernel;
 mod level;
 mod prepare;
@@ -164,6 +165,10 @@ mod soa;
 #[cfg(target_arch = "x86_64")]
 mod x86;
 
+pub use gbuffer::{
+    GBuffer, SoaSurface, shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level,
+    shade_gbuffer_with_level,
+};
 pub use level::{Level, UnsupportedLevel};
 pub use prepare::{BatchLight, BatchModel};
 pub use soa::{SoaRgb, SoaVec3};
@@ -316,7 +321,14 @@ pub fn shade_batch_rgba8<M: BatchModel, L: BatchLight>(
 ) -> usize {
     let level = Level::detect();
     let shading = Shading::new(level, model, material, scene);
-    chunked(&shading, positions, normals, out, rgba)
+    chunked(
+        &shading,
+        positions,
+        normals,
+        &kernel::PointInputs::default(),
+        out,
+        rgba,
+    )
 }
 
 /// Shades a batch straight into a `0x00RRGGBB` frame (the `u32` pixels that minifb and
@@ -358,6 +370,7 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
         &Shading::new(level, model, material, scene),
         positions,
         normals,
+        &kernel::PointInputs::default(),
         out,
         |[r, g, b]| u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b),
     )
@@ -402,6 +415,7 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
         &Shading::new(level, model, material, scene),
         positions,
         normals,
+        &kernel::PointInputs::default(),
         out,
         rgba,
     ))
@@ -535,6 +549,7 @@ fn chunked<M: BatchModel, L: BatchLight, T>(
     shading: &Shading<'_, '_, M, L>,
     positions: SoaVec3<'_>,
     normals: SoaVec3<'_>,
+    inputs: &kernel::PointInputs<'_>,
     out: &mut [T],
     pack: impl Fn([u8; 3]) -> T,
 ) -> usize {
@@ -558,7 +573,7 @@ fn chunked<M: BatchModel, L: BatchLight, T>(
         );
         let len = out.len();
         let (r, g, b) = (&mut r[..len], &mut g[..len], &mut b[..len]);
-        shading.shade(pos, nor, SoaRgb::new(r, g, b));
+        shading.shade_inputs(pos, nor, &inputs.from(k * CHUNK), SoaRgb::new(r, g, b));
         for (o, ((&r, &g), &b)) in out.iter_mut().zip(r.iter().zip(g.iter()).zip(b.iter())) {
             *o = pack(crate::linear_to_srgb8(Vec3::new(r, g, b)));
         }
@@ -625,33 +640,81 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
         }
     }
 
+    /// [`new`](Self::new) for a call with per-point `inputs`: the kernel also needs `Auto` for a
+    /// per-point shininess (it runs no other pow plan per lane).
+    fn with_inputs(
+        level: Level,
+        model: &'a M,
+        material: &'a Material,
+        scene: &'a Scene<'s, L>,
+        inputs: &kernel::PointInputs<'_>,
+    ) -> Self {
+        let mut shading = Shading::new(level, model, material, scene);
+        if let Some(k) = &shading.kernel {
+            let per_lane_pow =
+                k.lm.pow == crate::PowStrategy::Auto || k.lm.lobe == prepare::Lobe::None;
+            if inputs.surface.is_some() && !per_lane_pow {
+                shading.kernel = None;
+            }
+        }
+        shading
+    }
+
     /// Shades the common prefix of the slices; returns its length.
     fn shade(&self, pos: SoaVec3<'_>, nor: SoaVec3<'_>, out: SoaRgb<'_>) -> usize {
+        self.shade_inputs(pos, nor, &kernel::PointInputs::default(), out)
+    }
+
+    /// [`shade`](Self::shade) with per-point inputs over at least as many points.
+    fn shade_inputs(
+        &self,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &kernel::PointInputs<'_>,
+        out: SoaRgb<'_>,
+    ) -> usize {
         match &self.kernel {
-            Some(k) => dispatch::run_level(self.level, k, pos, nor, out),
-            None => scalar(self.model, self.material, self.scene, pos, nor, out),
+            Some(k) => dispatch::run_level(self.level, k, pos, nor, inputs, out),
+            None => scalar(self.model, self.material, self.scene, pos, nor, inputs, out),
         }
     }
 }
 
-/// Point by point with [`shade`](crate::shade), for scenes the kernel does not handle.
+/// Point by point with [`shade`](crate::shade) (with per-point inputs, a [`Shader`]'s
+/// `shade_surface`), for scenes the kernel does not handle.
+///
+/// [`Shader`]: crate::Shader
 fn scalar<M: BatchModel, L: BatchLight>(
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
+    inputs: &kernel::PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
     let n = pos.len().min(nor.len()).min(out.len());
+    let shader = crate::Shader::new(model, material, scene);
     for i in 0..n {
-        let c = crate::shade(
-            model,
-            material,
-            scene,
+        let (p, q) = (
             Vec3::new(pos.x[i], pos.y[i], pos.z[i]),
             Vec3::new(nor.x[i], nor.y[i], nor.z[i]),
-        )
+        );
+        let c = match (inputs.surface, inputs.visibility) {
+            (None, None) => crate::shade(model, material, scene, p, q),
+            (surface, visibility) => {
+                let surface = surface.map_or(crate::Surface::of(material), |s| crate::Surface {
+                    ambient: Vec3::new(s[0][i], s[1][i], s[2][i]),
+                    diffuse: Vec3::new(s[3][i], s[4][i], s[5][i]),
+                    specular: Vec3::new(s[6][i], s[7][i], s[8][i]),
+                    shininess: s[9][i],
+                });
+                let vis = crate::VisibilityFn(|j| {
+                    visibility.map_or(1.0, |(v, stride)| v[j * stride + i])
+                });
+                shader.shade_surface(p, q, &surface, vis)
+            }
+        }
         .total();
         out.r[i] = c.x;
         out.g[i] = c.y;

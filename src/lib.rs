@@ -130,9 +130,10 @@ mod visibility;
 
 pub use attenuation::Attenuation;
 pub use batch::{
-    BatchLight, BatchModel, Level, SoaRgb, SoaVec3, UnsupportedLevel, shade_batch, shade_batch_aos,
-    shade_batch_aos_rgba8, shade_batch_rgba8, shade_batch_rgba8_with_level, shade_batch_with_level,
-    shade_batch_xrgb8,
+    BatchLight, BatchModel, GBuffer, Level, SoaRgb, SoaSurface, SoaVec3, UnsupportedLevel,
+    shade_batch, shade_batch_aos, shade_batch_aos_rgba8, shade_batch_rgba8,
+    shade_batch_rgba8_with_level, shade_batch_with_level, shade_batch_xrgb8, shade_gbuffer,
+    shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level, shade_gbuffer_with_level,
 };
 pub use blinn_phong::BlinnPhong;
 pub use color::{

@@ -37,9 +37,9 @@ use std::time::Instant;
 
 use glam::{Mat3, Vec3};
 use phong::{
-    Attenuation, BlinnPhong, DirectionalLight, Incidence, Lambert, Level, Light, LightColors,
-    Material, Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel, Scene, Shader,
-    SoaRgb, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, Viewer,
+    Attenuation, BlinnPhong, DirectionalLight, GBuffer, Incidence, Lambert, Level, Light,
+    LightColors, Material, Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel,
+    Scene, Shader, SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, Viewer,
 };
 
 /// `v` rounded to `f32` with each component saturated to `±f32::MAX`: the generators' arithmetic
@@ -988,6 +988,111 @@ fn batch(r: &mut Rng, c: &mut Check) {
     }
 }
 
+/// `shade_gbuffer` with hard per-point surfaces and visibilities at every level: every channel
+/// finite and `≥ 0` (the totality promise), and the 8-bit frame the same level's output encoded.
+fn gbuffer(r: &mut Rng, c: &mut Check) {
+    let n = 1 + r.below(40) as usize;
+    let center = if r.coin() { Vec3::ZERO } else { r.hard_vec() };
+    let (lights, ambient, viewer) = scene_parts(r, center);
+    let scene = Scene {
+        lights: &lights,
+        ambient,
+        viewer,
+    };
+    let model = r.model();
+    let material = r.material();
+    let mut v = |f: &mut dyn FnMut(&mut Rng) -> f32| (0..n).map(|_| f(r)).collect::<Vec<f32>>();
+    let p: [Vec<f32>; 3] = [
+        v(&mut |r| {
+            if r.coin() {
+                r.hard()
+            } else {
+                r.range(-4.0, 4.0)
+            }
+        }),
+        v(&mut |r| r.range(-4.0, 4.0)),
+        v(&mut |r| {
+            if r.below(8) == 0 {
+                r.hard()
+            } else {
+                r.range(-4.0, 4.0)
+            }
+        }),
+    ];
+    let q: [Vec<f32>; 3] = [
+        v(&mut |r| r.range(-1.0, 1.0)),
+        v(&mut |r| {
+            if r.below(8) == 0 {
+                0.0
+            } else {
+                r.range(-1.0, 1.0)
+            }
+        }),
+        v(&mut |r| {
+            if r.below(8) == 0 {
+                r.hard()
+            } else {
+                r.range(-1.0, 1.0)
+            }
+        }),
+    ];
+    let k: Vec<Vec<f32>> = (0..9).map(|_| v(&mut |r| r.hard_nonneg())).collect();
+    let s = v(&mut |r| r.shininess());
+    let vis = {
+        let planes = lights.len().max(1);
+        (0..planes * n)
+            .map(|_| match r.below(3) {
+                0 => 0.0,
+                1 => 1.0,
+                _ => r.unit_f32(),
+            })
+            .collect::<Vec<f32>>()
+    };
+    let buffer = GBuffer::new(soa(&p), soa(&q))
+        .with_surface(SoaSurface {
+            ambient: soa(&k[0..3]),
+            diffuse: soa(&k[3..6]),
+            specular: soa(&k[6..9]),
+            shininess: &s,
+        })
+        .with_visibility(&vis);
+    for level in Level::supported() {
+        let (mut or, mut og, mut ob) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        phong::shade_gbuffer_with_level(
+            level,
+            &model,
+            &material,
+            &scene,
+            &buffer,
+            SoaRgb::new(&mut or, &mut og, &mut ob),
+        )
+        .unwrap();
+        c.count("shade_gbuffer_with_level", n as u64);
+        let mut rgba = vec![[0u8; 4]; n];
+        phong::shade_gbuffer_rgba8_with_level(level, &model, &material, &scene, &buffer, &mut rgba)
+            .unwrap();
+        c.count("shade_gbuffer_rgba8_with_level", n as u64);
+        for i in 0..n {
+            let out = Vec3::new(or[i], og[i], ob[i]);
+            c.expect("shade_gbuffer_with_level", finite_nonneg(out), || {
+                format!(
+                    "{level:?} {model:?} {material:?} {lights:?} {viewer:?} point {i} -> {out:?}"
+                )
+            });
+            let [r8, g8, b8] = phong::linear_to_srgb8(out);
+            c.expect(
+                "shade_gbuffer_rgba8_with_level",
+                rgba[i] == [r8, g8, b8, 255],
+                || format!("{level:?} point {i}: {:?} against {out:?}", rgba[i]),
+            );
+        }
+    }
+}
+
+fn soa(a: &[Vec<f32>]) -> SoaVec3<'_> {
+    SoaVec3::new(&a[0], &a[1], &a[2])
+}
+
 fn advisor(r: &mut Rng, c: &mut Check) {
     let p0 = r.unit() * r.range(0.0, 4.0);
     let positions = [
@@ -1031,7 +1136,13 @@ fn work(seed: u64, budget: u64, log: &Mutex<Log>) {
                 }
             }
             12..=13 => shading(&mut r, &mut c),
-            14 => batch(&mut r, &mut c),
+            14 => {
+                if r.below(4) == 0 {
+                    gbuffer(&mut r, &mut c)
+                } else {
+                    batch(&mut r, &mut c)
+                }
+            }
             _ => {
                 if r.below(8) == 0 {
                     advisor(&mut r, &mut c)

@@ -3,7 +3,7 @@
 
 #![allow(unsafe_code)]
 
-use super::kernel::{Setup, run};
+use super::kernel::{PointInputs, Setup, run, run_inputs};
 use super::level::Level;
 use super::prepare::{BatchLight, BatchModel};
 use super::soa::{SoaRgb, SoaVec3};
@@ -15,8 +15,11 @@ pub(super) fn run_level<M: BatchModel, L: BatchLight>(
     k: &Setup<'_, M, L>,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
+    inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
+    // Without per-point inputs: the plain kernel (see `kernel::run_inputs`).
+    let plain = inputs.surface.is_none() && inputs.visibility.is_none();
     #[cfg(target_arch = "x86_64")]
     {
         use super::{avx512, x86};
@@ -24,22 +27,38 @@ pub(super) fn run_level<M: BatchModel, L: BatchLight>(
             Level::Avx512 if level.is_supported() => {
                 // SAFETY: `is_supported` checked AVX-512F, AVX-512VL, AVX2 and FMA (at run time
                 // with `std`, in the build's target features without), which is every feature
-                // `avx512::avx512` enables.
-                return unsafe { avx512::avx512(k, pos, nor, out) };
+                // `avx512::avx512` and `x86::avx512` enable. The intrinsics kernel has no
+                // per-point inputs: a G-buffer call runs the one source compiled for AVX-512.
+                if plain {
+                    return unsafe { avx512::avx512(k, pos, nor, out) };
+                }
+                return unsafe { x86::avx512::<M, L, true>(k, pos, nor, inputs, out) };
             }
             Level::Avx2 if level.is_supported() => {
                 // SAFETY: `is_supported` checked AVX2 and FMA, the features `x86::avx2` enables.
-                return unsafe { x86::avx2(k, pos, nor, out) };
+                return unsafe {
+                    if plain {
+                        x86::avx2::<M, L, false>(k, pos, nor, inputs, out)
+                    } else {
+                        x86::avx2::<M, L, true>(k, pos, nor, inputs, out)
+                    }
+                };
             }
             Level::Sse2 => {
                 // SAFETY: SSE2 is part of the x86_64 baseline: every x86_64 CPU has it.
-                return unsafe { x86::sse2(k, pos, nor, out) };
+                return unsafe {
+                    if plain {
+                        x86::sse2::<M, L, false>(k, pos, nor, inputs, out)
+                    } else {
+                        x86::sse2::<M, L, true>(k, pos, nor, inputs, out)
+                    }
+                };
             }
             _ => {}
         }
     }
     let _ = level;
-    portable(k, pos, nor, out)
+    portable(k, pos, nor, (!plain).then_some(inputs), out)
 }
 
 /// The portable kernel: an exact `1 / sqrt(x)`.
@@ -47,6 +66,7 @@ fn portable<M: BatchModel, L: BatchLight>(
     k: &Setup<'_, M, L>,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
+    inputs: Option<&PointInputs<'_>>,
     out: SoaRgb<'_>,
 ) -> usize {
     let rsqrt = |x: super::kernel::Lanes| {
@@ -56,5 +76,8 @@ fn portable<M: BatchModel, L: BatchLight>(
         }
         r
     };
-    run(k, pos, nor, out, rsqrt)
+    match inputs {
+        None => run(k, pos, nor, out, rsqrt),
+        Some(inputs) => run_inputs(k, pos, nor, inputs, out, rsqrt),
+    }
 }

@@ -30,8 +30,11 @@ use crate::attenuation::Attenuation;
 use crate::gate::SpecularGate;
 use crate::material::Material;
 use crate::math;
-use crate::pow::{Poly, PowPlan, lobe_pow, poly_pow};
+use crate::pow::{Poly, PowPlan, auto_split, lobe_pow, poly_pow};
 use crate::shade::{Scene, Viewer};
+use crate::shader::Shader;
+use crate::surface::Surface;
+use crate::visibility::VisibilityFn;
 
 /// Lanes per step.
 pub(crate) const W: usize = 16;
@@ -329,6 +332,142 @@ fn pow_lanes(plan: PowPlan, flush: f32, x: Lanes) -> Lanes {
     lanes!(|i| if x[i] > 0.0 { r[i] } else { 0.0 })
 }
 
+/// The inputs of a call beyond positions and normals, as slices over the call's points: a
+/// G-buffer's per-point surface and per-light visibility (see `shade_gbuffer`).
+#[derive(Clone, Copy, Default)]
+pub(crate) struct PointInputs<'a> {
+    /// `Ka` (x, y, z), `Kd`, `Ks`, then the shininess: ten slices.
+    pub(crate) surface: Option<[&'a [f32]; 10]>,
+    /// Light `j`'s visibility at point `i` is `visibility[j * stride + i]`.
+    pub(crate) visibility: Option<(&'a [f32], usize)>,
+}
+
+impl PointInputs<'_> {
+    /// The same inputs from point `start` on.
+    pub(crate) fn from(&self, start: usize) -> Self {
+        PointInputs {
+            surface: self.surface.map(|s| s.map(|a| &a[start..])),
+            visibility: self.visibility.map(|(v, stride)| (&v[start..], stride)),
+        }
+    }
+
+    /// Light `j`'s visibilities at points `i..i + count` (1 without shadows).
+    #[inline(always)]
+    fn visibility(&self, j: usize, i: usize, count: usize) -> Lanes {
+        match self.visibility {
+            Some((v, stride)) => {
+                let mut a = [1.0f32; W];
+                a[..count].copy_from_slice(&v[j * stride + i..j * stride + i + count]);
+                a
+            }
+            None => [1.0; W],
+        }
+    }
+
+    /// The raw surface values at points `i..i + count`.
+    #[inline(always)]
+    fn surface(&self, i: usize, count: usize) -> Option<[Lanes; 10]> {
+        let slices = self.surface?;
+        let mut raw = [[0.0f32; W]; 10];
+        for (r, a) in raw.iter_mut().zip(slices) {
+            r[..count].copy_from_slice(&a[i..i + count]);
+        }
+        Some(raw)
+    }
+}
+
+/// A chunk's per-point surface, sanitised as [`Shader::shade_surface`] does: reflectances, and
+/// each lane's specular scale and `Auto` split of its exponent (`auto_split`).
+pub(crate) struct SurfaceLanes {
+    ka: [Lanes; 3],
+    kd: [Lanes; 3],
+    ks: [Lanes; 3],
+    scale: Lanes,
+    whole: [u32; W],
+    frac: Lanes,
+}
+
+impl SurfaceLanes {
+    #[inline(always)]
+    fn new(lm: &LaneModel, raw: &[Lanes; 10]) -> Self {
+        let clean = |c: &Lanes| lanes!(|i| math::clamp_or_lo(c[i], 0.0, math::MAX));
+        let s = clean(&raw[9]);
+        let e = if lm.lobe == Lobe::Blinn {
+            lanes!(|i| 0.5 * s[i])
+        } else {
+            s
+        };
+        let norm = lm.normalization;
+        let scale = match lm.lobe {
+            Lobe::None => [0.0; W],
+            _ if !norm.is_normalized() => [1.0; W],
+            Lobe::Phong => lanes!(|i| norm.phong_factor(s[i])),
+            Lobe::Blinn => lanes!(|i| norm.blinn_factor(s[i])),
+        };
+        let mut whole = [0u32; W];
+        let mut frac = [0.0f32; W];
+        for i in 0..W {
+            (whole[i], frac[i]) = auto_split(e[i]);
+        }
+        SurfaceLanes {
+            ka: [clean(&raw[0]), clean(&raw[1]), clean(&raw[2])],
+            kd: [clean(&raw[3]), clean(&raw[4]), clean(&raw[5])],
+            ks: [clean(&raw[6]), clean(&raw[7]), clean(&raw[8])],
+            scale,
+            whole,
+            frac,
+        }
+    }
+}
+
+/// Bases and partial products below this are set to 0 in [`auto_pow_lanes`]: a product of two
+/// kept values is then at least `2⁻¹²⁶`, never subnormal, and a lobe that loses them is below
+/// `2⁻⁶³` (an absolute error far under every tolerance of the batch).
+const LANE_FLUSH: f32 = 1.0 / (1u64 << 63) as f32;
+
+/// `PowStrategy::Auto`'s `x^e` with an exponent per lane (`surface.whole`, `surface.frac`):
+/// squaring where it is whole, by the ladder of `pow_u32_fixed` (the same products in the same
+/// order), the degree-7 polynomial elsewhere; 0 for `x ≤ 0`. The ladder runs only over the bits
+/// some lane has, and the polynomial only when some lane needs it: a chunk of fractional
+/// shininesses squares nothing.
+#[inline(always)]
+fn auto_pow_lanes(x: &Lanes, surface: &SurfaceLanes) -> Lanes {
+    let flush = |v: f32| if v < LANE_FLUSH { 0.0 } else { v };
+    let whole = &surface.whole;
+    let steps = 32 - whole.iter().fold(0u32, |a, &n| a | n).leading_zeros();
+    let mut acc = [1.0f32; W];
+    let mut base = lanes!(|i| flush(x[i]));
+    for k in 0..steps {
+        acc = lanes!(|i| if (whole[i] >> k) & 1 == 1 {
+            flush(acc[i] * base[i])
+        } else {
+            acc[i]
+        });
+        base = lanes!(|i| if whole[i] >> (k + 1) != 0 {
+            flush(base[i] * base[i])
+        } else {
+            base[i]
+        });
+    }
+    let frac = &surface.frac;
+    let poly = if frac.iter().fold(0u32, |a, f| a | f.to_bits()) != 0 {
+        lanes!(|i| poly_pow(Poly::P7, if x[i] > 0.0 { x[i] } else { 1.0 }, frac[i]))
+    } else {
+        [0.0; W]
+    };
+    lanes!(|i| if x[i] > 0.0 {
+        if frac[i] != 0.0 { poly[i] } else { acc[i] }
+    } else {
+        0.0
+    })
+}
+
+/// `min(x, f32::MAX)`.
+#[inline(always)]
+fn saturate(x: f32) -> f32 {
+    x.min(math::MAX)
+}
+
 /// Below this `2 + 2 L·V` (an angle between `L` and `V` above about 174°) the Blinn-Phong lane is
 /// re-shaded by the scalar path: the cosine form's relative error there, about
 /// `2e-7 / (2 + 2 L·V)` in `(N·H)²`, times `s/2` in the lobe, would otherwise reach the 8-bit
@@ -337,13 +476,19 @@ pub(super) const BLINN_DEN_MIN: f32 = 1e-2;
 
 /// Shades 16 points. Returns the colours and which lanes need the scalar path. `FOLDED` is
 /// [`Setup::folded`]: sum the products of light and material colours (nothing can overflow)
-/// instead of the three sums of the saturation rule.
+/// instead of the three sums of the saturation rule (never with a per-point `surface`).
+/// `visibility`, the call's inputs with this chunk's first point and count, gives each light's
+/// visibility per lane (clamped to `[0, 1]` here, NaN read as 0), which scales the light's
+/// diffuse and specular parts, not its ambient part. (Plain functions and options, not closures:
+/// a closure is not always inlined, and out of line it would lose the level's target features.)
 #[inline(always)]
 fn chunk<M, L, R, const FOLDED: bool>(
     k: &Setup<'_, M, L>,
     p: &[Lanes; 3],
     n: &[Lanes; 3],
     rsqrt: &R,
+    surface: Option<&SurfaceLanes>,
+    visibility: Option<(&PointInputs<'_>, usize, usize)>,
 ) -> [Lanes; 4]
 where
     M: BatchModel,
@@ -436,9 +581,18 @@ where
             }
         };
         let nl = lanes!(|i| ux[i] * lx[i] + uy[i] * ly[i] + uz[i] * lz[i]);
+        // The visibility scales the diffuse and specular parts (a constant 1 without shadows,
+        // which the compiler removes).
+        let attv = match visibility {
+            Some((inputs, i, count)) => {
+                let vis = inputs.visibility(j, i, count);
+                lanes!(|i| att[i] * math::clamp_or_lo(vis[i], 0.0, 1.0))
+            }
+            None => att,
+        };
         // f and f·max(N·L, 0) are finite (f ≤ 1/MIN_DENOMINATOR), and so is every colour: no
         // product below is 0·∞, and the sums of terms ≥ 0 can reach +∞ but never NaN.
-        let wd = lanes!(|i| att[i] * nl[i].max(0.0));
+        let wd = lanes!(|i| attv[i] * nl[i].max(0.0));
         for c in 0..3 {
             if FOLDED {
                 amb[c] = lanes!(|i| amb[c][i] + att[i] * la[c] + wd[i] * ld[c]);
@@ -472,11 +626,14 @@ where
                 1.0
             });
         }
-        let lobe = pow_lanes(k.plan, k.flush, base);
+        let lobe = match surface {
+            Some(sf) => auto_pow_lanes(&base, sf),
+            None => pow_lanes(k.plan, k.flush, base),
+        };
         let ws = match lm.gate {
-            SpecularGate::Step => lanes!(|i| if nl[i] > 0.0 { att[i] * lobe[i] } else { 0.0 }),
-            SpecularGate::Cosine => lanes!(|i| att[i] * nl[i].max(0.0) * lobe[i]),
-            SpecularGate::None => lanes!(|i| att[i] * lobe[i]),
+            SpecularGate::Step => lanes!(|i| if nl[i] > 0.0 { attv[i] * lobe[i] } else { 0.0 }),
+            SpecularGate::Cosine => lanes!(|i| attv[i] * nl[i].max(0.0) * lobe[i]),
+            SpecularGate::None => lanes!(|i| attv[i] * lobe[i]),
         };
         if FOLDED {
             // The scale is in `ks`, and nothing overflows.
@@ -487,7 +644,9 @@ where
         }
         // A normalisation factor can be as large as f32::MAX: f·factor·lobe is clamped there (as
         // `shade` clamps its weight) before it meets a colour, so a zero lobe stays 0.
-        let ws = if k.scaled {
+        let ws = if let Some(sf) = surface {
+            lanes!(|i| (ws[i] * sf.scale[i]).min(math::MAX))
+        } else if k.scaled {
             let scale = lm.specular_scale;
             lanes!(|i| (ws[i] * scale).min(math::MAX))
         } else {
@@ -505,22 +664,28 @@ where
             bad,
         ];
     }
-    let (ka, kd, ks, ke) = (
-        k.material.ambient().to_array(),
-        k.material.diffuse().to_array(),
-        k.material.specular().to_array(),
-        k.material.emission().to_array(),
-    );
+    let ke = k.material.emission().to_array();
     // Each sum saturates at f32::MAX before the material's colour multiplies it; the total
-    // saturates again (`shade`'s order: ambient + diffuse + specular + emission).
-    let sat = |x: f32| x.min(math::MAX);
-    let out = |c: usize| {
-        lanes!(|i| sat(sat(ka[c] * sat(amb[c][i]))
-            + sat(kd[c] * sat(dif[c][i]))
-            + sat(ks[c] * sat(spe[c][i]))
-            + ke[c]))
-    };
-    [out(0), out(1), out(2), bad]
+    // saturates again (`shade`'s order: ambient + diffuse + specular + emission). A loop, not a
+    // closure per channel: a closure may be left out of line, without the level's features.
+    let mut rgb = [[0.0f32; W]; 3];
+    for (c, out) in rgb.iter_mut().enumerate() {
+        let (ka, kd, ks) = match surface {
+            Some(sf) => (sf.ka[c], sf.kd[c], sf.ks[c]),
+            None => (
+                [k.material.ambient()[c]; W],
+                [k.material.diffuse()[c]; W],
+                [k.material.specular()[c]; W],
+            ),
+        };
+        *out = lanes!(|i| saturate(
+            saturate(ka[i] * saturate(amb[c][i]))
+                + saturate(kd[i] * saturate(dif[c][i]))
+                + saturate(ks[i] * saturate(spe[c][i]))
+                + ke[c]
+        ));
+    }
+    [rgb[0], rgb[1], rgb[2], bad]
 }
 
 /// Re-shades the flagged lanes with the scalar path.
@@ -551,6 +716,102 @@ pub(crate) fn fixup<M: BatchModel, L: BatchLight>(
     out
 }
 
+/// [`fixup`] for a call with per-point inputs: [`Shader::shade_surface`] (which sanitises the raw
+/// surface) with the point's visibilities, point `i` of `inputs` being lane `i`.
+#[cold]
+#[inline(never)]
+fn fixup_inputs<M: BatchModel, L: BatchLight>(
+    k: &Setup<'_, M, L>,
+    p: [Lanes; 3],
+    n: [Lanes; 3],
+    inputs: &PointInputs<'_>,
+    mut out: [Lanes; 4],
+    count: usize,
+) -> [Lanes; 4] {
+    let raw = inputs.surface(0, count);
+    let shader = Shader::for_one_point(k.model, k.material, k.scene);
+    for i in 0..count {
+        if out[3][i] != 0.0 {
+            let surface = match raw {
+                Some(r) => Surface {
+                    ambient: Vec3::new(r[0][i], r[1][i], r[2][i]),
+                    diffuse: Vec3::new(r[3][i], r[4][i], r[5][i]),
+                    specular: Vec3::new(r[6][i], r[7][i], r[8][i]),
+                    shininess: r[9][i],
+                },
+                None => Surface::of(k.material),
+            };
+            let vis = VisibilityFn(|j| inputs.visibility(j, i, 1)[0]);
+            let c = shader
+                .shade_surface(
+                    Vec3::new(p[0][i], p[1][i], p[2][i]),
+                    Vec3::new(n[0][i], n[1][i], n[2][i]),
+                    &surface,
+                    vis,
+                )
+                .total();
+            out[0][i] = c.x;
+            out[1][i] = c.y;
+            out[2][i] = c.z;
+        }
+    }
+    out
+}
+
+/// One chunk of [`run_with`]: its points `i..i + count` shaded, the lanes the scalar path must
+/// redo flagged.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn shade_chunk<M, L, R, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+    k: &Setup<'_, M, L>,
+    p: &[Lanes; 3],
+    n: &[Lanes; 3],
+    rsqrt: &R,
+    inputs: &PointInputs<'_>,
+    i: usize,
+    count: usize,
+) -> [Lanes; 4]
+where
+    M: BatchModel,
+    L: BatchLight,
+    R: Fn(Lanes) -> Lanes,
+{
+    let raw = if SURFACE {
+        inputs.surface(i, count)
+    } else {
+        None
+    };
+    // A match, not `Option::map`: a closure may be left out of line, without the level's features.
+    #[allow(clippy::manual_map)]
+    let surface = match raw {
+        Some(raw) => Some(SurfaceLanes::new(&k.lm, &raw)),
+        None => None,
+    };
+    let visibility = if VISIBILITY {
+        Some((inputs, i, count))
+    } else {
+        None
+    };
+    chunk::<M, L, R, FOLDED>(k, p, n, rsqrt, surface.as_ref(), visibility)
+}
+
+/// The flagged lanes of a chunk re-shaded: [`fixup`], or [`fixup_inputs`] with per-point inputs.
+#[inline(always)]
+fn fix<M: BatchModel, L: BatchLight>(
+    k: &Setup<'_, M, L>,
+    p: [Lanes; 3],
+    n: [Lanes; 3],
+    inputs: Option<&PointInputs<'_>>,
+    i: usize,
+    c: [Lanes; 4],
+    count: usize,
+) -> [Lanes; 4] {
+    match inputs {
+        Some(inputs) => fixup_inputs(k, p, n, &inputs.from(i), c, count),
+        None => fixup(k, p, n, c, count),
+    }
+}
+
 /// Shades the common prefix of all slices with the given inverse square root; returns its length.
 #[inline(always)]
 pub(crate) fn run<M, L, R>(
@@ -565,18 +826,48 @@ where
     L: BatchLight,
     R: Fn(Lanes) -> Lanes,
 {
+    let none = PointInputs::default();
     if k.folded {
-        run_with::<M, L, R, true>(k, pos, nor, out, rsqrt)
+        run_with::<M, L, R, true, false, false>(k, pos, nor, &none, out, rsqrt)
     } else {
-        run_with::<M, L, R, false>(k, pos, nor, out, rsqrt)
+        run_with::<M, L, R, false, false, false>(k, pos, nor, &none, out, rsqrt)
     }
 }
 
+/// [`run`] with per-point `inputs` over at least as many points (the caller checks). Each
+/// combination of inputs is its own instance of the loop; a level compiles this in a function of
+/// its own, so the plain calls' function stays the size it was.
 #[inline(always)]
-fn run_with<M, L, R, const FOLDED: bool>(
+pub(crate) fn run_inputs<M, L, R>(
     k: &Setup<'_, M, L>,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
+    inputs: &PointInputs<'_>,
+    out: SoaRgb<'_>,
+    rsqrt: R,
+) -> usize
+where
+    M: BatchModel,
+    L: BatchLight,
+    R: Fn(Lanes) -> Lanes,
+{
+    match (inputs.surface.is_some(), inputs.visibility.is_some()) {
+        (false, _) if k.folded => {
+            run_with::<M, L, R, true, false, true>(k, pos, nor, inputs, out, rsqrt)
+        }
+        (false, _) => run_with::<M, L, R, false, false, true>(k, pos, nor, inputs, out, rsqrt),
+        (true, false) => run_with::<M, L, R, false, true, false>(k, pos, nor, inputs, out, rsqrt),
+        (true, true) => run_with::<M, L, R, false, true, true>(k, pos, nor, inputs, out, rsqrt),
+    }
+}
+
+/// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present.
+#[inline(always)]
+fn run_with<M, L, R, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
     rsqrt: R,
 ) -> usize
@@ -593,10 +884,11 @@ where
     while i + W <= len {
         let p = [load(px, i), load(py, i), load(pz, i)];
         let n = [load(nx, i), load(ny, i), load(nz, i)];
-        let mut c = chunk::<M, L, R, FOLDED>(k, &p, &n, &rsqrt);
+        let mut c =
+            shade_chunk::<M, L, R, FOLDED, SURFACE, VISIBILITY>(k, &p, &n, &rsqrt, inputs, i, W);
         // An integer OR reduction (a float max would be a serial chain).
         if c[3].iter().fold(0u32, |a, &b| a | b.to_bits()) != 0 {
-            c = fixup(k, p, n, c, W);
+            c = fix(k, p, n, (SURFACE || VISIBILITY).then_some(inputs), i, c, W);
         }
         r[i..i + W].copy_from_slice(&c[0]);
         g[i..i + W].copy_from_slice(&c[1]);
@@ -615,8 +907,19 @@ where
             load_tail(ny, i, count),
             load_tail(nz, i, count),
         ];
-        let c = chunk::<M, L, R, FOLDED>(k, &p, &n, &rsqrt);
-        let c = fixup(k, p, n, c, count);
+        let c = shade_chunk::<M, L, R, FOLDED, SURFACE, VISIBILITY>(
+            k, &p, &n, &rsqrt, inputs, i, count,
+        );
+        // The padding lanes are shaded too (zero normals: flagged) and fixed only up to `count`.
+        let c = fix(
+            k,
+            p,
+            n,
+            (SURFACE || VISIBILITY).then_some(inputs),
+            i,
+            c,
+            count,
+        );
         r[i..].copy_from_slice(&c[0][..count]);
         g[i..].copy_from_slice(&c[1][..count]);
         b[i..].copy_from_slice(&c[2][..count]);

@@ -35,6 +35,8 @@ pub struct LaneModel {
     /// `s` for Phong, `s/2` for Blinn-Phong's `(N·H)²`.
     pub(crate) exponent: f32,
     pub(crate) pow: PowStrategy,
+    /// The model's normalisation, for a per-point shininess's specular scale.
+    pub(crate) normalization: Normalization,
 }
 
 /// A light the kernel handles, with its colours.
@@ -100,6 +102,7 @@ impl BatchModel for Lambert {
             specular_scale: 0.0,
             exponent: 0.0,
             pow: PowStrategy::Exact,
+            normalization: self.normalization,
         }
     }
 }
@@ -124,6 +127,7 @@ impl BatchModel for Phong {
             specular_scale,
             exponent: s,
             pow: self.pow,
+            normalization: n,
         }
     }
 }
@@ -139,6 +143,7 @@ impl BatchModel for BlinnPhong {
             specular_scale,
             exponent: 0.5 * s,
             pow: self.pow,
+            normalization: n,
         }
     }
 }

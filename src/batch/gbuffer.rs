@@ -1,0 +1,295 @@
+//! Deferred shading from a G-buffer: per-point surfaces and per-light shadows in the batch kernel.
+
+use super::kernel::PointInputs;
+use super::level::{Level, UnsupportedLevel};
+use super::prepare::{BatchLight, BatchModel};
+use super::soa::{SoaRgb, SoaVec3};
+use super::{Shading, chunked, rgba};
+use crate::material::Material;
+use crate::shade::Scene;
+
+/// A G-buffer's per-point surface as structure-of-arrays slices: at point `i`, the
+/// [`Surface`](crate::Surface) with these reflectances and this shininess (texture maps, resolved
+/// per pixel).
+///
+/// A textured renderer in LearnOpenGL's style passes its diffuse texels as both `ambient` and
+/// `diffuse` (see [`Surface::textured`](crate::Surface::textured)), or the diffuse texels times an
+/// ambient-occlusion factor as `ambient`.
+///
+/// **Domain:** as [`Surface`](crate::Surface): finite reflectances `≥ 0` and shininess `≥ 0`.
+/// Nothing is validated per point: release builds sanitise (NaN and negatives read as 0, `+∞`
+/// as `f32::MAX`), debug builds assert where the scalar path runs.
+#[derive(Clone, Copy, Debug)]
+pub struct SoaSurface<'a> {
+    /// `Ka` per point.
+    pub ambient: SoaVec3<'a>,
+    /// `Kd` per point.
+    pub diffuse: SoaVec3<'a>,
+    /// `Ks` per point.
+    pub specular: SoaVec3<'a>,
+    /// `s` per point.
+    pub shininess: &'a [f32],
+}
+
+impl<'a> SoaSurface<'a> {
+    /// The length of the shortest of the ten slices.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.ambient
+            .len()
+            .min(self.diffuse.len())
+            .min(self.specular.len())
+            .min(self.shininess.len())
+    }
+
+    /// Whether the shortest slice is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    fn slices(self) -> [&'a [f32]; 10] {
+        let (a, d, s) = (self.ambient, self.diffuse, self.specular);
+        [a.x, a.y, a.z, d.x, d.y, d.z, s.x, s.y, s.z, self.shininess]
+    }
+}
+
+/// What a deferred renderer has per pixel: positions and normals, and optionally a per-point
+/// surface and per-light visibilities (shadow factors).
+///
+/// **Visibility layout:** light-major, `visibility[j * stride + i]` for light `j` at point `i`,
+/// where `stride = positions.x.len()`: one plane of the G-buffer per light, in the order of
+/// `scene.lights`. Each value is clamped to `[0, 1]` (NaN reads as 0) and scales the light's
+/// diffuse and specular parts, not its ambient part, as
+/// [`Shader::shade_visible`](crate::Shader::shade_visible) does.
+///
+/// ```
+/// use phong::{GBuffer, SoaVec3};
+/// let (x, z, one) = ([0.0; 4], [0.0; 4], [1.0; 4]);
+/// let g = GBuffer::new(SoaVec3::new(&x, &x, &z), SoaVec3::new(&x, &x, &one));
+/// assert_eq!(g.len(), 4);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct GBuffer<'a> {
+    /// The points, in the same space as the scene's lights and viewer.
+    pub positions: SoaVec3<'a>,
+    /// The surface normals (any length; normalised per point).
+    pub normals: SoaVec3<'a>,
+    /// Per-point reflectances and shininess; `None`: the call's material at every point.
+    pub surface: Option<SoaSurface<'a>>,
+    /// Per-light, per-point visibility (see the type's docs); `None`: every light unshadowed.
+    pub visibility: Option<&'a [f32]>,
+}
+
+impl<'a> GBuffer<'a> {
+    /// Positions and normals only: the call's material at every point, no shadows.
+    #[must_use]
+    pub fn new(positions: SoaVec3<'a>, normals: SoaVec3<'a>) -> Self {
+        GBuffer {
+            positions,
+            normals,
+            surface: None,
+            visibility: None,
+        }
+    }
+
+    /// The same G-buffer with a per-point surface.
+    #[must_use]
+    pub fn with_surface(self, surface: SoaSurface<'a>) -> Self {
+        GBuffer {
+            surface: Some(surface),
+            ..self
+        }
+    }
+
+    /// The same G-buffer with per-light visibilities (layout in the type's docs).
+    #[must_use]
+    pub fn with_visibility(self, visibility: &'a [f32]) -> Self {
+        GBuffer {
+            visibility: Some(visibility),
+            ..self
+        }
+    }
+
+    /// The number of points: the shortest of the position, normal and surface slices.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        let n = self.positions.len().min(self.normals.len());
+        self.surface.map_or(n, |s| n.min(s.len()))
+    }
+
+    /// Whether there are no points.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The kernel's view of the per-point inputs, and how many points can be shaded: 0 when the
+    /// visibility slice is too short for `lights` planes.
+    fn inputs(&self, lights: usize) -> (PointInputs<'a>, usize) {
+        let stride = self.positions.x.len();
+        let n = self.len();
+        let short = self
+            .visibility
+            .is_some_and(|v| v.len() < lights.saturating_mul(stride));
+        debug_assert!(
+            !short,
+            "GBuffer: visibility needs {lights} × {stride} values (one plane per light)"
+        );
+        let inputs = PointInputs {
+            surface: self.surface.map(|s| s.slices()),
+            visibility: self.visibility.map(|v| (v, stride)),
+        };
+        (inputs, if short { 0 } else { n })
+    }
+}
+
+/// Shades a G-buffer: `out[i] = Shader::shade_surface(p[i], n[i], surface[i], vis[i]).total()`
+/// (with [`shade`](crate::shade)'s material where `surface` is `None`, every light unshadowed
+/// where `visibility` is `None`), by the batch kernel.
+///
+/// ```text
+/// I = Ke + Ka⊙(Ia + Σ f·La) + Σ f·visⱼ · ( Kd⊙Ld · diffuse(N·L) + Ks⊙Ls · gate(N·L) · lobe^s )
+/// ```
+///
+/// with `Ka, Kd, Ks, s` the point's surface, `Ke` the material's emission. Each lane of the
+/// kernel has its own shininess: under [`PowStrategy::Auto`](crate::PowStrategy::Auto) (the
+/// default) a whole exponent is squared and a fractional one takes the degree-7 polynomial, lane
+/// by lane; a model with another pow strategy and a per-point surface is shaded point by point.
+///
+/// **Domain:** as [`shade_batch`](crate::shade_batch), and as [`GBuffer`] and [`SoaSurface`]
+/// describe. **Returns** the number of points shaded: the shortest of the G-buffer's slices and
+/// `out` (0 when the visibility slice is too short; debug builds assert both); outputs past it
+/// are untouched. **Degenerate input:** as [`shade_batch`](crate::shade_batch), per point: the
+/// lanes the kernel cannot do exactly go to the scalar path with their own surface and
+/// visibilities. **Error** against the scalar path: as [`shade_batch`](crate::shade_batch)'s.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{DirectionalLight, GBuffer, LightColors, Material, Phong, Scene, SoaRgb, SoaSurface, SoaVec3, Viewer};
+///
+/// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+/// let material = Material::try_from_color(Vec3::ONE, 32.0)?;
+/// let (zero, one) = ([0.0; 2], [1.0; 2]);
+/// // Two texels: red and green; the second point is half in shadow.
+/// let (red, green, shininess) = ([1.0, 0.0], [0.0, 1.0], [8.0, 40.5]);
+/// let texels = SoaVec3::new(&red, &green, &zero);
+/// let surface = SoaSurface { ambient: texels, diffuse: texels, specular: SoaVec3::new(&zero, &zero, &zero), shininess: &shininess };
+/// let visibility = [1.0, 0.5];
+/// let g = GBuffer::new(SoaVec3::new(&zero, &zero, &zero), SoaVec3::new(&zero, &zero, &one))
+///     .with_surface(surface)
+///     .with_visibility(&visibility);
+/// let (mut r, mut gr, mut b) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+/// let n = phong::shade_gbuffer(&Phong::default(), &material, &scene, &g, SoaRgb::new(&mut r, &mut gr, &mut b));
+/// assert_eq!(n, 2);
+/// assert_eq!((r, gr), ([1.0, 0.0], [0.0, 0.5]));
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub fn shade_gbuffer<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    run(Level::detect(), model, material, scene, gbuffer, out)
+}
+
+/// [`shade_gbuffer`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
+/// written) when this CPU or build cannot run it.
+pub fn shade_gbuffer_with_level<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: SoaRgb<'_>,
+) -> Result<usize, UnsupportedLevel> {
+    if !level.is_supported() {
+        return Err(UnsupportedLevel(level));
+    }
+    Ok(run(level, model, material, scene, gbuffer, out))
+}
+
+/// [`shade_gbuffer`] straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
+/// `[r, g, b] = linear_to_srgb8` of [`shade_gbuffer`]'s colour, in 1024-point chunks on the stack
+/// as [`shade_batch_rgba8`](crate::shade_batch_rgba8) writes them. Alpha is 255.
+///
+/// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with `out` in place of the
+/// three output slices; the levels are those of [`shade_gbuffer`]'s `f32` output, bit for bit.
+pub fn shade_gbuffer_rgba8<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: &mut [[u8; 4]],
+) -> usize {
+    rgba8(Level::detect(), model, material, scene, gbuffer, out)
+}
+
+/// [`shade_gbuffer_rgba8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
+/// written) when this CPU or build cannot run it.
+pub fn shade_gbuffer_rgba8_with_level<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: &mut [[u8; 4]],
+) -> Result<usize, UnsupportedLevel> {
+    if !level.is_supported() {
+        return Err(UnsupportedLevel(level));
+    }
+    Ok(rgba8(level, model, material, scene, gbuffer, out))
+}
+
+fn run<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    let (inputs, n) = gbuffer.inputs(scene.lights.len());
+    debug_assert!(
+        out.len() == n,
+        "shade_gbuffer: the output must have the G-buffer's length"
+    );
+    let n = n.min(out.len());
+    let shading = Shading::with_inputs(level, model, material, scene, &inputs);
+    let (pos, nor) = (gbuffer.positions, gbuffer.normals);
+    shading.shade_inputs(
+        SoaVec3::new(&pos.x[..n], &pos.y[..n], &pos.z[..n]),
+        SoaVec3::new(&nor.x[..n], &nor.y[..n], &nor.z[..n]),
+        &inputs,
+        SoaRgb::new(&mut out.r[..n], &mut out.g[..n], &mut out.b[..n]),
+    )
+}
+
+fn rgba8<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: &mut [[u8; 4]],
+) -> usize {
+    let (inputs, n) = gbuffer.inputs(scene.lights.len());
+    debug_assert!(
+        out.len() == n,
+        "shade_gbuffer_rgba8: the output must have the G-buffer's length"
+    );
+    let n = n.min(out.len());
+    let shading = Shading::with_inputs(level, model, material, scene, &inputs);
+    let (pos, nor) = (gbuffer.positions, gbuffer.normals);
+    chunked(
+        &shading,
+        SoaVec3::new(&pos.x[..n], &pos.y[..n], &pos.z[..n]),
+        SoaVec3::new(&nor.x[..n], &nor.y[..n], &nor.z[..n]),
+        &inputs,
+        &mut out[..n],
+        rgba,
+    )
+}

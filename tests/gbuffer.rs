@@ -1,0 +1,393 @@
+//! `shade_gbuffer`: per-point surfaces and per-light visibilities in the batch kernel, at every
+//! dispatch level this machine runs, against the documented accuracy of the batch and against the
+//! scalar `Shader::shade_surface`.
+//!
+//! **What is checked.** A point with surface `(Ka, Kd, Ks, s)` and visibilities `visⱼ` is, by the
+//! equation, the same as the point under a material `(Ka, Kd, Ks, s)` (the call's emission kept)
+//! and a scene whose light `j` has diffuse and specular colours `visⱼ·Ldⱼ`, `visⱼ·Lsⱼ` (ambient
+//! unchanged). So each output must lie in that point's range from tests/support/batch_range.rs,
+//! the one the plain batch is held to. The scalar `shade_surface` is checked against the same
+//! range, and the 8-bit entry point against `linear_to_srgb8` of the `f32` one, bit for bit.
+
+#[path = "support/batch_range.rs"]
+mod batch_range;
+#[path = "support/rng.rs"]
+mod rng;
+
+use glam::Vec3;
+use phong::{
+    Attenuation, BlinnPhong, GBuffer, Lambert, Level, LightColors, Material, Model, Normalization,
+    Phong, PointLight, PowStrategy, Scene, Shader, SoaRgb, SoaSurface, SoaVec3, SpecularGate,
+    Surface, Viewer, VisibilityFn,
+};
+use rng::Rng;
+
+/// One point light's parameters, so the test can rebuild it with its colours scaled.
+#[derive(Clone, Copy)]
+struct Lamp {
+    at: Vec3,
+    attenuation: Attenuation,
+    ambient: Vec3,
+    diffuse: Vec3,
+    specular: Vec3,
+}
+
+impl Lamp {
+    fn light(&self, vis: f32) -> PointLight {
+        let colors =
+            LightColors::try_new(self.ambient, self.diffuse * vis, self.specular * vis).unwrap();
+        PointLight::try_new(self.at, self.attenuation, colors).unwrap()
+    }
+}
+
+/// A G-buffer in array-of-structs form, with its SoA copy made per call.
+struct Points {
+    p: Vec<Vec3>,
+    n: Vec<Vec3>,
+    ka: Vec<Vec3>,
+    kd: Vec<Vec3>,
+    ks: Vec<Vec3>,
+    s: Vec<f32>,
+    /// Light-major: `vis[j * len + i]`.
+    vis: Vec<f32>,
+}
+
+fn split(v: &[Vec3]) -> [Vec<f32>; 3] {
+    [
+        v.iter().map(|a| a.x).collect(),
+        v.iter().map(|a| a.y).collect(),
+        v.iter().map(|a| a.z).collect(),
+    ]
+}
+
+/// Random points around the lights, with textured surfaces: shininess uniform in `[2, 128]`
+/// (fractional) in most lanes and whole in some (the two `Auto` forms side by side in one
+/// vector), shadow factors that are mostly 0 or 1 and sometimes between, and a few degenerate
+/// points (zero normal, a point at a light, the viewer's position) for the scalar path.
+fn points(rng: &mut Rng, len: usize, lamps: &[Lamp], eye: Vec3) -> Points {
+    let mut g = Points {
+        p: vec![],
+        n: vec![],
+        ka: vec![],
+        kd: vec![],
+        ks: vec![],
+        s: vec![],
+        vis: vec![],
+    };
+    for i in 0..len {
+        let p = match i % 37 {
+            5 => lamps[0].at,
+            11 => eye,
+            _ => rng.vec3_in(-2.0, 2.0),
+        };
+        let n = if i % 41 == 7 {
+            Vec3::ZERO
+        } else {
+            rng.vec3_in(-1.0, 1.0)
+        };
+        let texel = rng.vec3_in(0.0, 1.0);
+        g.p.push(p);
+        g.n.push(n);
+        g.ka.push(texel * rng.unit_f32());
+        g.kd.push(texel);
+        g.ks.push(Vec3::splat(rng.unit_f32()));
+        g.s.push(match i % 5 {
+            0 => [1.0, 8.0, 32.0, 64.0, 100.0][(i / 5) % 5],
+            _ => rng.range_f32(2.0, 128.0),
+        });
+    }
+    for _ in lamps {
+        for _ in 0..len {
+            let u = rng.unit_f32();
+            g.vis.push(if u < 0.4 {
+                1.0
+            } else if u < 0.6 {
+                rng.unit_f32()
+            } else {
+                0.0
+            });
+        }
+    }
+    g
+}
+
+fn lamps(rng: &mut Rng, count: usize) -> Vec<Lamp> {
+    (0..count)
+        .map(|_| Lamp {
+            at: rng.vec3_in(-3.0, 3.0),
+            attenuation: Attenuation::try_polynomial(1.0, 0.09, 0.032).unwrap(),
+            ambient: Vec3::splat(0.05),
+            diffuse: rng.vec3_in(0.2, 1.0),
+            specular: Vec3::splat(rng.range_f32(0.2, 1.0)),
+        })
+        .collect()
+}
+
+fn models() -> Vec<(String, Model)> {
+    let mut v: Vec<(String, Model)> = vec![("lambert".into(), Lambert::default().into())];
+    for gate in [SpecularGate::Step, SpecularGate::Cosine, SpecularGate::None] {
+        for normalization in [Normalization::None, Normalization::Energy] {
+            v.push((
+                format!("phong {gate:?} {normalization:?}"),
+                Phong {
+                    gate,
+                    normalization,
+                    pow: PowStrategy::Auto,
+                }
+                .into(),
+            ));
+            v.push((
+                format!("blinn {gate:?} {normalization:?}"),
+                BlinnPhong {
+                    gate,
+                    normalization,
+                    pow: PowStrategy::Auto,
+                }
+                .into(),
+            ));
+        }
+    }
+    v
+}
+
+/// `shade_gbuffer` at `level`, every point's colour.
+fn run(
+    level: Level,
+    model: &Model,
+    base: &Material,
+    scene: &Scene<'_, PointLight>,
+    g: &Points,
+    with_surface: bool,
+    with_vis: bool,
+) -> Vec<Vec3> {
+    let len = g.p.len();
+    let (p, n) = (split(&g.p), split(&g.n));
+    let (ka, kd, ks) = (split(&g.ka), split(&g.kd), split(&g.ks));
+    let mut buffer = GBuffer::new(
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&n[0], &n[1], &n[2]),
+    );
+    if with_surface {
+        buffer = buffer.with_surface(SoaSurface {
+            ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
+            diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
+            specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
+            shininess: &g.s,
+        });
+    }
+    if with_vis {
+        buffer = buffer.with_visibility(&g.vis);
+    }
+    let (mut r, mut gr, mut b) = (vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]);
+    let shaded = phong::shade_gbuffer_with_level(
+        level,
+        model,
+        base,
+        scene,
+        &buffer,
+        SoaRgb::new(&mut r, &mut gr, &mut b),
+    )
+    .expect("a supported level");
+    assert_eq!(shaded, len);
+    (0..len).map(|i| Vec3::new(r[i], gr[i], b[i])).collect()
+}
+
+/// Every level, with and without each per-point input, against the range of the equivalent
+/// material and scene, and the scalar `shade_surface` against the same range.
+fn check(seed: u64, lights: usize, eye: Vec3) {
+    let mut rng = Rng::new(seed);
+    let lamps = lamps(&mut rng, lights);
+    let g = points(&mut rng, 203, &lamps, eye);
+    let len = g.p.len();
+    let base = Material::try_new(Vec3::splat(0.2), Vec3::splat(0.6), Vec3::splat(0.4), 24.0)
+        .unwrap()
+        .try_with_emission(Vec3::splat(0.01))
+        .unwrap();
+    let plain: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = Scene {
+        lights: &plain,
+        ambient: Vec3::splat(0.02),
+        viewer: Viewer::At(eye),
+    };
+    for (name, model) in models() {
+        for (with_surface, with_vis) in [(true, true), (true, false), (false, true)] {
+            // The equivalent material and scene of point i.
+            let equivalent = |i: usize| {
+                let m = if with_surface {
+                    Material::try_new(g.ka[i], g.kd[i], g.ks[i], g.s[i])
+                        .unwrap()
+                        .try_with_emission(base.emission())
+                        .unwrap()
+                } else {
+                    base
+                };
+                let lights: Vec<PointLight> = lamps
+                    .iter()
+                    .enumerate()
+                    .map(|(j, l)| l.light(if with_vis { g.vis[j * len + i] } else { 1.0 }))
+                    .collect();
+                (m, lights)
+            };
+            let shader = Shader::new(model, &base, &scene);
+            let ranges: Vec<batch_range::Range> = (0..len)
+                .map(|i| {
+                    let (m, lights) = equivalent(i);
+                    let s = Scene {
+                        lights: &lights,
+                        ..scene
+                    };
+                    batch_range::range(&model, &m, &s, g.p[i], g.n[i])
+                })
+                .collect();
+            for (i, r) in ranges.iter().enumerate() {
+                let surface = if with_surface {
+                    Surface {
+                        ambient: g.ka[i],
+                        diffuse: g.kd[i],
+                        specular: g.ks[i],
+                        shininess: g.s[i],
+                    }
+                } else {
+                    Surface::of(&base)
+                };
+                let vis = VisibilityFn(|j| if with_vis { g.vis[j * len + i] } else { 1.0 });
+                let want = shader.shade_surface(g.p[i], g.n[i], &surface, vis).total();
+                assert!(
+                    r.holds(want),
+                    "{name}: shade_surface at point {i} gave {want}, outside [{}, {}]",
+                    r.lo,
+                    r.hi
+                );
+            }
+            for level in Level::supported() {
+                let out = run(level, &model, &base, &scene, &g, with_surface, with_vis);
+                for (i, r) in ranges.iter().enumerate() {
+                    assert!(
+                        r.holds(out[i]),
+                        "{name} at {level} (surface {with_surface}, visibility {with_vis}): \
+                         point {i} (p = {}, n = {}, s = {}) gave {}, outside [{}, {}]",
+                        g.p[i],
+                        g.n[i],
+                        g.s[i],
+                        out[i],
+                        r.lo,
+                        r.hi
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn every_level_agrees_with_the_equation_for_one_light() {
+    check(0x9b1f, 1, Vec3::new(0.0, 1.0, 5.0));
+}
+
+#[test]
+fn every_level_agrees_with_the_equation_for_three_lights() {
+    check(0x5eed_0003, 3, Vec3::new(1.0, -2.0, 4.0));
+}
+
+/// The 8-bit entry point is `linear_to_srgb8` of the `f32` one, at every level and at every
+/// chunk boundary (more than 1024 points), with alpha 255.
+#[test]
+fn eight_bit_output_is_the_encoded_f32_output() {
+    let mut rng = Rng::new(0x88);
+    let lamps = lamps(&mut rng, 2);
+    let eye = Vec3::new(0.5, 1.0, 4.0);
+    let g = points(&mut rng, 2100, &lamps, eye);
+    let lights: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(eye),
+    };
+    let base = Material::try_from_color(Vec3::ONE, 32.0).unwrap();
+    let model: Model = Phong::default().into();
+    let (p, n) = (split(&g.p), split(&g.n));
+    let (ka, kd, ks) = (split(&g.ka), split(&g.kd), split(&g.ks));
+    let buffer = GBuffer::new(
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&n[0], &n[1], &n[2]),
+    )
+    .with_surface(SoaSurface {
+        ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
+        diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
+        specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
+        shininess: &g.s,
+    })
+    .with_visibility(&g.vis);
+    for level in Level::supported() {
+        let f = run(level, &model, &base, &scene, &g, true, true);
+        let mut frame = vec![[0u8; 4]; g.p.len()];
+        let shaded = phong::shade_gbuffer_rgba8_with_level(
+            level, &model, &base, &scene, &buffer, &mut frame,
+        )
+        .unwrap();
+        assert_eq!(shaded, g.p.len());
+        for (i, px) in frame.iter().enumerate() {
+            let [r, gr, b] = phong::linear_to_srgb8(f[i]);
+            assert_eq!(*px, [r, gr, b, 255], "{level}: point {i}");
+        }
+    }
+}
+
+/// Without per-point inputs the G-buffer call is `shade_batch`, bit for bit; a visibility slice
+/// too short for its planes shades nothing (release builds; debug builds assert).
+#[test]
+fn a_plain_gbuffer_is_shade_batch() {
+    let mut rng = Rng::new(0x77);
+    let lamps = lamps(&mut rng, 2);
+    let eye = Vec3::new(0.0, 0.0, 3.0);
+    let g = points(&mut rng, 100, &lamps, eye);
+    let lights: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(eye),
+    };
+    let base = Material::try_from_color(Vec3::new(0.8, 0.5, 0.2), 20.5).unwrap();
+    let (p, n) = (split(&g.p), split(&g.n));
+    let (pos, nor) = (
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&n[0], &n[1], &n[2]),
+    );
+    let len = g.p.len();
+    let (mut a, mut b, mut c) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
+    let (mut d, mut e, mut f) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
+    for level in Level::supported() {
+        let model = BlinnPhong::default();
+        phong::shade_gbuffer_with_level(
+            level,
+            &model,
+            &base,
+            &scene,
+            &GBuffer::new(pos, nor),
+            SoaRgb::new(&mut a, &mut b, &mut c),
+        )
+        .unwrap();
+        phong::shade_batch_with_level(
+            level,
+            &model,
+            &base,
+            &scene,
+            pos,
+            nor,
+            SoaRgb::new(&mut d, &mut e, &mut f),
+        )
+        .unwrap();
+        assert_eq!((&a, &b, &c), (&d, &e, &f), "{level}");
+    }
+    if !cfg!(debug_assertions) {
+        let short = vec![1.0; len];
+        let n = phong::shade_gbuffer(
+            &Phong::default(),
+            &base,
+            &scene,
+            &GBuffer::new(pos, nor).with_visibility(&short),
+            SoaRgb::new(&mut a, &mut b, &mut c),
+        );
+        assert_eq!(n, 0, "two lights need two planes of visibility");
+    }
+}
