@@ -10,6 +10,12 @@
 //! FMA or SSE2 through `is_x86_feature_detected!`) or at compile time (without `std`: the build's
 //! target features). [`shade_batch_with_level`] forces a [`Level`], for tests and measurements.
 //!
+//! [`shade_gbuffer`] is the deferred renderer's form: a [`GBuffer`] with, optionally, a per-point
+//! surface ([`SoaSurface`]: what a [`Surface`](crate::Surface) holds, from texture maps) and a
+//! visibility per light and point (shadow maps), which scales the light's diffuse and specular
+//! parts. It computes [`Shader::shade_surface`](crate::Shader::shade_surface) per point in the
+//! same kernel, each lane with its own shininess.
+//!
 //! ## What runs in the vector kernel
 //!
 //! - models: [`Lambert`](crate::Lambert), [`Phong`](crate::Phong),
