@@ -465,7 +465,7 @@ fn auto_pow_lanes(x: &Lanes, surface: &SurfaceLanes) -> Lanes {
 /// `min(x, f32::MAX)`.
 #[inline(always)]
 fn saturate(x: f32) -> f32 {
-    x.min(math::MAX)
+    math::min_or(x, math::MAX)
 }
 
 /// Below this `2 + 2 L·V` (an angle between `L` and `V` above about 174°) the Blinn-Phong lane is
@@ -571,7 +571,7 @@ where
                 // A denominator past f32::MAX (coefficients near it) is evaluated in f64 by
                 // `Attenuation::factor`: such lanes go to the scalar path.
                 bad = lanes!(|i| if den[i] < f32::INFINITY { bad[i] } else { 1.0 });
-                let att = lanes!(|i| 1.0 / den[i].max(Attenuation::MIN_DENOMINATOR));
+                let att = lanes!(|i| 1.0 / math::max_or(den[i], Attenuation::MIN_DENOMINATOR));
                 (
                     lanes!(|i| dx[i] * inv[i]),
                     lanes!(|i| dy[i] * inv[i]),
@@ -592,7 +592,7 @@ where
         };
         // f and f·max(N·L, 0) are finite (f ≤ 1/MIN_DENOMINATOR), and so is every colour: no
         // product below is 0·∞, and the sums of terms ≥ 0 can reach +∞ but never NaN.
-        let wd = lanes!(|i| attv[i] * nl[i].max(0.0));
+        let wd = lanes!(|i| attv[i] * math::max_or(nl[i], 0.0));
         for c in 0..3 {
             if FOLDED {
                 amb[c] = lanes!(|i| amb[c][i] + att[i] * la[c] + wd[i] * ld[c]);
@@ -607,15 +607,15 @@ where
         let lv = lanes!(|i| lx[i] * vx[i] + ly[i] * vy[i] + lz[i] * vz[i]);
         let base = match lm.lobe {
             Lobe::Blinn => lanes!(|i| {
-                let s = (nl[i] + nv[i]).max(0.0);
+                let s = math::max_or(nl[i] + nv[i], 0.0);
                 let den = 2.0 + 2.0 * lv[i];
                 if den > 1e-12 {
-                    (s * s / den).min(1.0)
+                    math::min_or(s * s / den, 1.0)
                 } else {
                     0.0
                 }
             }),
-            _ => lanes!(|i| (2.0 * nl[i] * nv[i] - lv[i]).clamp(-1.0, 1.0)),
+            _ => lanes!(|i| math::min_or(math::max_or(2.0 * nl[i] * nv[i] - lv[i], -1.0), 1.0)),
         };
         if let Lobe::Blinn = lm.lobe {
             // Near L = −V the cosine form's 2 + 2 L·V has lost its digits (docs/accuracy.md);
@@ -632,7 +632,7 @@ where
         };
         let ws = match lm.gate {
             SpecularGate::Step => lanes!(|i| if nl[i] > 0.0 { attv[i] * lobe[i] } else { 0.0 }),
-            SpecularGate::Cosine => lanes!(|i| attv[i] * nl[i].max(0.0) * lobe[i]),
+            SpecularGate::Cosine => lanes!(|i| attv[i] * math::max_or(nl[i], 0.0) * lobe[i]),
             SpecularGate::None => lanes!(|i| attv[i] * lobe[i]),
         };
         if FOLDED {
@@ -645,10 +645,10 @@ where
         // A normalisation factor can be as large as f32::MAX: f·factor·lobe is clamped there (as
         // `shade` clamps its weight) before it meets a colour, so a zero lobe stays 0.
         let ws = if let Some(sf) = surface {
-            lanes!(|i| (ws[i] * sf.scale[i]).min(math::MAX))
+            lanes!(|i| math::min_or(ws[i] * sf.scale[i], math::MAX))
         } else if k.scaled {
             let scale = lm.specular_scale;
-            lanes!(|i| (ws[i] * scale).min(math::MAX))
+            lanes!(|i| math::min_or(ws[i] * scale, math::MAX))
         } else {
             ws
         };
@@ -658,9 +658,9 @@ where
     }
     if FOLDED {
         return [
-            lanes!(|i| amb[0][i].min(math::MAX)),
-            lanes!(|i| amb[1][i].min(math::MAX)),
-            lanes!(|i| amb[2][i].min(math::MAX)),
+            lanes!(|i| math::min_or(amb[0][i], math::MAX)),
+            lanes!(|i| math::min_or(amb[1][i], math::MAX)),
+            lanes!(|i| math::min_or(amb[2][i], math::MAX)),
             bad,
         ];
     }

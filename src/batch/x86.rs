@@ -7,9 +7,8 @@
 //! vector registers without `unsafe` (its size check is at compile time).
 
 use core::arch::x86_64::{
-    __m128, __m256, __m512, _mm_mul_ps, _mm_rsqrt_ps, _mm_set1_ps, _mm_sub_ps, _mm256_fnmadd_ps,
-    _mm256_mul_ps, _mm256_rsqrt_ps, _mm256_set1_ps, _mm512_fnmadd_ps, _mm512_mul_ps,
-    _mm512_rsqrt14_ps, _mm512_set1_ps,
+    __m128, __m256, __m512, _mm_rsqrt_ps, _mm256_fnmadd_ps, _mm256_mul_ps, _mm256_rsqrt_ps,
+    _mm256_set1_ps, _mm512_fnmadd_ps, _mm512_mul_ps, _mm512_rsqrt14_ps, _mm512_set1_ps,
 };
 
 use bytemuck::must_cast;
@@ -73,15 +72,22 @@ pub(super) fn sse2<M: BatchModel, L: BatchLight, const INPUTS: bool>(
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
+    // Only the estimate through intrinsics, the Newton step in plain code the compiler
+    // vectorises: a closure this small is inlined into the kernel's loop, where the whole step
+    // in intrinsics was left out of line (a call per inverse norm).
     let rsqrt = |x: Lanes| -> Lanes {
         let q: [__m128; 4] = must_cast(x);
-        let f = |x: __m128| {
-            let y = _mm_rsqrt_ps(x);
-            let hx = _mm_mul_ps(x, _mm_set1_ps(0.5));
-            let t = _mm_sub_ps(_mm_set1_ps(1.5), _mm_mul_ps(hx, _mm_mul_ps(y, y)));
-            _mm_mul_ps(y, t)
-        };
-        must_cast([f(q[0]), f(q[1]), f(q[2]), f(q[3])])
+        let y: Lanes = must_cast([
+            _mm_rsqrt_ps(q[0]),
+            _mm_rsqrt_ps(q[1]),
+            _mm_rsqrt_ps(q[2]),
+            _mm_rsqrt_ps(q[3]),
+        ]);
+        let mut r = [0.0f32; 16];
+        for i in 0..16 {
+            r[i] = y[i] * (1.5 - (x[i] * 0.5) * (y[i] * y[i]));
+        }
+        r
     };
     run_any::<M, L, _, INPUTS>(k, pos, nor, inputs, out, rsqrt)
 }
