@@ -565,22 +565,26 @@ fn main() {
          it out of a probe loop: full-range normalisation by power-of-two scaling, where the \
          baseline's `normalize` fails on huge and tiny vectors (about 10% for each of N, V and \
          L); the squaring ladder of fixed length, whose 22 selects on the exponent become 22 \
-         branches (about 15%); the `f64` evaluation of an overflowing attenuation denominator and \
-         the window of the windowed forms, computed for every falloff (about 14% together); the \
-         saturation (about 8%); the masks for missing directions, the visibility clamp, the gate \
-         and the saturating subtraction (1–4% each). The path is latency-bound: its chain per \
-         point is about twice the baseline's. Tried and measured slower or wrong: uniform selects \
-         on the falloff's form (slower), colours premultiplied by the material (wrong where \
-         products pass `f32::MAX` or underflow), an `f32` formula for overflowing denominators \
-         (loses subnormal factors the fuzz campaign checks), a ladder without its stop selects \
-         (subnormal products, much slower). A loop the compiler cannot see into (a scene passed \
-         in, several lights) is scalar: that is `raytrace` above, against scalar hand-written \
-         code.\n\
+         branches (about 15%); the `f64` evaluation of an overflowing attenuation denominator, \
+         which a vectorised loop computes beside the common one for every point (about 5%); the \
+         masks for missing directions, the visibility clamp, the gate and the saturating \
+         subtraction (1–4% each). Already taken out of the common path, as branches on what is \
+         the same at every point: the window and the second division of the forms that have \
+         them, the saturation where the material's sums cannot reach `f32::MAX`, and the \
+         zero-vector masks a step or cosine gate makes redundant (0.70× → 0.80× together). Tried \
+         and measured slower or wrong: uniform selects on the falloff's form, or choosing between \
+         both forms' quotients (slower), the ladder's selects as exact `max` arithmetic on \
+         per-exponent constants (no branches, 14% slower), the overflowing denominator's division \
+         in `f32` (no faster), colours premultiplied by the material (wrong where products pass \
+         `f32::MAX` or underflow), an `f32` formula for overflowing denominators (loses subnormal \
+         factors the fuzz campaign checks), a ladder without its stop selects (subnormal \
+         products, much slower). A loop the compiler cannot see into (a scene passed in, several \
+         lights) is scalar: that is `raytrace` above, against scalar hand-written code.\n\
          - **`fragment`**: a per-point shininess makes the exponent's plan a per-lane value, so \
          both `Auto` forms run for every point and the squaring ladder runs all eleven steps with \
-         two selects each (about 20%), and the windowed-attenuation form, kept bit for bit \
-         `Attenuation::factor`, costs two divisions even for a polynomial light (about 10%). The \
-         hand-written loop calls `powf` once per point and has neither.\n\
+         two selects each (about 8%: the time without it), and a per-point surface is sanitised \
+         and saturated at every point (no bound can be proved once for it). The hand-written loop \
+         calls `powf` once per point and does neither.\n\
          - **`batch_frac`** needs `Poly7` (degree 7 `log2`, degree 5 `exp2`) to stay as 8-bit \
          exact as `powf`; every cheaper strategy fails that criterion (table below), and Poly7's \
          two dependent polynomial chains cost about half as much again as the rest of the \
