@@ -555,10 +555,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 emission: self.emission,
             };
         }
-        // Saturated always: in a vectorised loop the unsaturated return of the light loop's
-        // `safe` case would be computed beside this one, not instead of it, and `min` leaves
-        // every value below f32::MAX as it is, so the bits are the same.
-        // Per component with the machine's `min` (`Vec3::min` would add IEEE minNum's NaN test).
+        // Otherwise (a per-point surface, whose test would cost more at every point than the
+        // `min`s, or sums that may reach f32::MAX) saturated; `min` leaves every value below
+        // f32::MAX as it is, so the bits are the light loop's either way. Per component with the machine's `min` (`Vec3::min` would add IEEE minNum's NaN test).
         let min = |v: Vec3| {
             Vec3::new(
                 math::min_or(v.x, math::MAX),
