@@ -124,6 +124,15 @@ impl<'a> GBuffer<'a> {
         self.len() == 0
     }
 
+    /// The first `n` positions and normals (`n` at most [`len`](Self::len)).
+    fn prefix(&self, n: usize) -> (SoaVec3<'a>, SoaVec3<'a>) {
+        let (p, q) = (self.positions, self.normals);
+        (
+            SoaVec3::new(&p.x[..n], &p.y[..n], &p.z[..n]),
+            SoaVec3::new(&q.x[..n], &q.y[..n], &q.z[..n]),
+        )
+    }
+
     /// The kernel's view of the per-point inputs, and how many points can be shaded: 0 when the
     /// visibility slice is too short for `lights` planes.
     fn inputs(&self, lights: usize) -> (PointInputs<'a>, usize) {
@@ -259,10 +268,10 @@ fn run<M: BatchModel, L: BatchLight>(
     );
     let n = n.min(out.len());
     let shading = Shading::with_inputs(level, model, material, scene, &inputs);
-    let (pos, nor) = (gbuffer.positions, gbuffer.normals);
+    let (pos, nor) = gbuffer.prefix(n);
     shading.shade_inputs(
-        SoaVec3::new(&pos.x[..n], &pos.y[..n], &pos.z[..n]),
-        SoaVec3::new(&nor.x[..n], &nor.y[..n], &nor.z[..n]),
+        pos,
+        nor,
         &inputs,
         SoaRgb::new(&mut out.r[..n], &mut out.g[..n], &mut out.b[..n]),
     )
@@ -283,13 +292,6 @@ fn rgba8<M: BatchModel, L: BatchLight>(
     );
     let n = n.min(out.len());
     let shading = Shading::with_inputs(level, model, material, scene, &inputs);
-    let (pos, nor) = (gbuffer.positions, gbuffer.normals);
-    chunked(
-        &shading,
-        SoaVec3::new(&pos.x[..n], &pos.y[..n], &pos.z[..n]),
-        SoaVec3::new(&nor.x[..n], &nor.y[..n], &nor.z[..n]),
-        &inputs,
-        &mut out[..n],
-        rgba,
-    )
+    let (pos, nor) = gbuffer.prefix(n);
+    chunked(&shading, pos, nor, &inputs, &mut out[..n], rgba)
 }
