@@ -1,4 +1,5 @@
-//! The library's only `unsafe` code (three calls; the AVX-512 kernel's tests have their own):
+//! The library's only `unsafe` code (four `unsafe` blocks around six kernel calls; the AVX-512
+//! kernel's tests have their own):
 //! calling a `#[target_feature]` kernel after checking the CPU.
 
 #![allow(unsafe_code)]

@@ -1,6 +1,7 @@
 //! The portable batch kernel: one source, 16 points at a time, compiled for the `Portable`,
-//! `Sse2` and `Avx2` levels (the `Avx512` level runs the intrinsics kernel in `avx512.rs`, which
-//! follows the same algorithm).
+//! `Sse2` and `Avx2` levels, and for `Avx512` where a call has per-point inputs (a G-buffer's
+//! surfaces or visibilities). The `Avx512` level's plain calls run the intrinsics kernel in
+//! `avx512.rs`, which follows the same algorithm.
 //!
 //! Every quantity is a `[f32; 16]` and every operation a loop over the 16 lanes with no
 //! cross-lane dependency, so LLVM turns each into two AVX2 instructions or four SSE2 ones. Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:

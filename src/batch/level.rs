@@ -7,8 +7,12 @@ use core::fmt;
 /// The levels run two kernel sources. `Portable`, `Sse2` and `Avx2` run one portable kernel
 /// (plain Rust over 16-lane arrays), compiled once per level with that level's target features
 /// for LLVM to vectorise, and passed that level's inverse square root. `Avx512` runs a second
-/// kernel, the same equations written with AVX-512 intrinsics: fused multiply-adds throughout and
-/// its `log2`/`exp2` polynomials by Estrin's scheme, so it rounds differently from the other three.
+/// kernel for calls with one material and no shadows ([`shade_batch`](crate::shade_batch) and
+/// the 8-bit and array-of-structs entry points): the same equations written with AVX-512
+/// intrinsics, fused multiply-adds throughout and its `log2`/`exp2` polynomials by Estrin's
+/// scheme, so it rounds differently from the other three. G-buffer calls with a per-point surface
+/// or per-light visibility ([`shade_gbuffer`](crate::shade_gbuffer)) run the portable kernel at
+/// every level, at `Avx512` compiled for AVX-512 with `vrsqrt14ps`.
 /// They differ in the vector width and in how the three inverse norms `1/‖n‖`, `1/‖L‖`, `1/‖V‖`
 /// are computed:
 ///
@@ -17,7 +21,7 @@ use core::fmt;
 /// | `Portable` | portable, the build's target features | whatever the build targets (4 × f32, SSE2, in a default x86_64 build) | `1 / sqrt(x)` | ≤ 1 ulp + 0.5 ulp |
 /// | `Sse2` (x86_64) | portable, SSE2 | 4 × f32 | `rsqrtps` + one Newton step | ≤ 1.5·(1.5·2⁻¹²)² + rounding ≈ 3e-7 |
 /// | `Avx2` (AVX2 + FMA) | portable, AVX2 + FMA | 8 × f32 | `vrsqrtps` + one Newton step (fused) | ≈ 3e-7, as `Sse2` |
-/// | `Avx512` (AVX-512F/VL + AVX2 + FMA) | intrinsics | 16 × f32 | `vrsqrt14ps` + one Newton step | ≤ 1.5·2⁻²⁸ + rounding ≈ 1.5e-7 |
+/// | `Avx512` (AVX-512F/VL + AVX2 + FMA) | intrinsics (G-buffer calls: portable, AVX-512) | 16 × f32 | `vrsqrt14ps` + one Newton step | ≤ 1.5·2⁻²⁸ + rounding ≈ 1.5e-7 |
 ///
 /// (A Newton step `y' = y·(3 − x·y²)/2` turns a relative error `e` into about `1.5·e²`.) Every
 /// level sends the same points to the scalar [`shade`](crate::shade) (degenerate points, and
