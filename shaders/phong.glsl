@@ -133,9 +133,10 @@ float blinn_specular(uint gate, uint normalization, vec3 n, vec3 l, vec3 v, floa
 
 float window_falloff(float d, float r) {
     if (d < r) {
+        // (1 − x⁴) factored as (1 − x)(1 + x)(1 + x²), with 1 − x as (r − d)/r: no cancellation
+        // near d = r, the same form as the CPU's Attenuation::factor. Capped at 1 as there.
         float x = d / r;
-        float x2 = x * x;
-        float w = 1.0 - x2 * x2;
+        float w = min(((r - d) / r) * (1.0 + x) * (1.0 + x * x), 1.0);
         return w * w;
     }
     return 0.0;

@@ -123,9 +123,10 @@ fn blinn_specular(p: Params, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, nl: f32, 
 
 fn window(d: f32, r: f32) -> f32 {
     if (d < r) {
+        // (1 − x⁴) factored as (1 − x)(1 + x)(1 + x²), with 1 − x as (r − d)/r: no cancellation
+        // near d = r, the same form as the CPU's Attenuation::factor. Capped at 1 as there.
         let x = d / r;
-        let x2 = x * x;
-        let w = 1.0 - x2 * x2;
+        let w = min(((r - d) / r) * (1.0 + x) * (1.0 + x * x), 1.0);
         return w * w;
     }
     return 0.0;
