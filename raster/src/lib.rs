@@ -4,7 +4,7 @@
 //!   [`phong::vertex_normals`]; [`Framebuffer`]: linear colour, depth and triangle ids.
 //! - [`draw`]: near-plane clipping, a depth test and perspective-correct barycentric interpolation,
 //!   shading per vertex (Gouraud), per pixel (Phong shading) or adaptively per triangle with
-//!   [`phong::gouraud_within_tolerance`] ([`ShadingMode`]).
+//!   [`phong::shading_rate::gouraud_within_tolerance`] ([`ShadingMode`]).
 //! - [`PhongShader`]: [`phong::shade`] as a [`SurfaceShader`], with one term or all, texture maps,
 //!   and light culling by [`phong::Attenuation::cull_radius`].
 //! - [`Image`]: sRGB or raw 8-bit encoding, captions in a built-in 3×5 font, PNG output.

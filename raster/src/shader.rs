@@ -55,7 +55,7 @@ pub struct PhongShader<'a> {
     /// Diffuse and specular maps, if any.
     pub texture: Option<Texture>,
     /// Adaptive mode's tolerance (linear units, per channel) for
-    /// [`phong::gouraud_within_tolerance`].
+    /// [`phong::shading_rate::gouraud_within_tolerance`].
     pub tolerance: f32,
     /// Per-light cull distances ([`phong::Attenuation::cull_radius`]); lights farther than
     /// their distance from a point are skipped there. Empty: no culling.
@@ -183,7 +183,7 @@ impl SurfaceShader for PhongShader<'_> {
 
     fn per_vertex_ok(&self, positions: [Vec3; 3], normals: [Vec3; 3]) -> bool {
         self.texture.is_none()
-            && phong::gouraud_within_tolerance(
+            && phong::shading_rate::gouraud_within_tolerance(
                 self.model,
                 &self.material,
                 &self.scene,
