@@ -276,6 +276,75 @@ impl Attenuation {
         }
     }
 
+    /// `P / max(d², ε²)` with the default `ε` ([`Self::DEFAULT_MIN_DISTANCE`]), without checks.
+    ///
+    /// **Domain:** `P` finite and `≥ 0`; debug builds assert it. Release builds apply the crate's
+    /// rule for unchecked constructors: NaN and negatives become 0, `+∞` saturates at `f32::MAX`.
+    /// Use [`try_inverse_square`](Self::try_inverse_square) to reject such values instead.
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// assert_eq!(Attenuation::inverse_square(4.0).factor(2.0), 1.0);
+    /// ```
+    #[must_use]
+    pub fn inverse_square(power: f32) -> Self {
+        debug_assert!(
+            Self::try_inverse_square(power).is_ok(),
+            "Attenuation::inverse_square: power must be finite and >= 0"
+        );
+        Attenuation::InverseSquare {
+            power: math::clamp_or_lo(power, 0.0, math::MAX),
+            min_distance: Self::DEFAULT_MIN_DISTANCE,
+        }
+    }
+
+    /// The Unreal windowed form with radius `r`, without checks.
+    ///
+    /// **Domain:** `r` in `[f32::MIN_POSITIVE, f32::MAX]`; debug builds assert it. Release builds
+    /// clamp `r` into that range, with NaN read as the lower end (a light whose window closes at
+    /// once, the nearest valid thing to a zero radius). Use [`try_unreal`](Self::try_unreal) to
+    /// reject such values instead.
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// let a = Attenuation::unreal(10.0);
+    /// assert_eq!(a.factor(10.0), 0.0); // nothing at or past the radius
+    /// assert_eq!(a, Attenuation::try_unreal(10.0).unwrap());
+    /// ```
+    #[must_use]
+    pub fn unreal(radius: f32) -> Self {
+        debug_assert!(
+            Self::try_unreal(radius).is_ok(),
+            "Attenuation::unreal: radius must lie in [f32::MIN_POSITIVE, f32::MAX]"
+        );
+        Attenuation::Unreal {
+            radius: math::clamp_or_lo(radius, f32::MIN_POSITIVE, math::MAX),
+        }
+    }
+
+    /// The Frostbite windowed form with radius `r` and the default `ε`, without checks.
+    ///
+    /// **Domain and release behaviour:** as [`unreal`](Self::unreal). Use
+    /// [`try_frostbite`](Self::try_frostbite) to reject bad radii instead.
+    ///
+    /// ```
+    /// use phong::Attenuation;
+    /// let a = Attenuation::frostbite(10.0);
+    /// assert_eq!(a.factor(10.0), 0.0);
+    /// assert_eq!(a, Attenuation::try_frostbite(10.0).unwrap());
+    /// ```
+    #[must_use]
+    pub fn frostbite(radius: f32) -> Self {
+        debug_assert!(
+            Self::try_frostbite(radius).is_ok(),
+            "Attenuation::frostbite: radius must lie in [f32::MIN_POSITIVE, f32::MAX]"
+        );
+        Attenuation::Frostbite {
+            radius: math::clamp_or_lo(radius, f32::MIN_POSITIVE, math::MAX),
+            min_distance: Self::DEFAULT_MIN_DISTANCE,
+        }
+    }
+
     /// The polynomial form, checked: every coefficient finite and `≥ 0`.
     ///
     /// ```

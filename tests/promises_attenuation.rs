@@ -126,6 +126,13 @@ fn unchecked_polynomial(c: f32, l: f32, q: f32) -> Option<Attenuation> {
     std::panic::catch_unwind(|| Attenuation::polynomial(c, l, q)).ok()
 }
 
+/// An unchecked constructor, its checked twin's answer, and the release build's documented value.
+type UncheckedCase = (
+    fn(f32) -> Attenuation,
+    Result<Attenuation, phong::PhongError>,
+    Attenuation,
+);
+
 /// The documented release-build rule for one coefficient.
 fn sanitised(x: f32) -> f32 {
     if x.is_nan() || x < 0.0 {
@@ -183,6 +190,47 @@ proptest! {
                     quadratic: sanitised(q),
                 };
                 prop_assert_eq!(a, want);
+            }
+        }
+    }
+
+    /// The other unchecked constructors, by the same rule for their own domains: a debug build
+    /// panics exactly when the checked twin rejects the value; a release build keeps a valid one
+    /// bit for bit (the checked twin's result) and otherwise clamps the power into `[0, f32::MAX]`
+    /// (NaN → 0) and a radius into `[f32::MIN_POSITIVE, f32::MAX]` (NaN → the lower end).
+    #[test]
+    fn unchecked_constructors_follow_the_crate_rule(x in any_bits()) {
+        let radius = |x: f32| {
+            if x.is_nan() { f32::MIN_POSITIVE } else { x.clamp(f32::MIN_POSITIVE, f32::MAX) }
+        };
+        let eps = Attenuation::DEFAULT_MIN_DISTANCE;
+        let cases: [UncheckedCase; 3] = [
+            (
+                Attenuation::inverse_square,
+                Attenuation::try_inverse_square(x),
+                Attenuation::InverseSquare { power: sanitised(x), min_distance: eps },
+            ),
+            (
+                Attenuation::unreal,
+                Attenuation::try_unreal(x),
+                Attenuation::Unreal { radius: radius(x) },
+            ),
+            (
+                Attenuation::frostbite,
+                Attenuation::try_frostbite(x),
+                Attenuation::Frostbite { radius: radius(x), min_distance: eps },
+            ),
+        ];
+        for (unchecked, checked, want) in cases {
+            match std::panic::catch_unwind(|| unchecked(x)).ok() {
+                None => prop_assert!(cfg!(debug_assertions) && checked.is_err(), "{x:e}"),
+                Some(a) => {
+                    if let Ok(v) = checked {
+                        prop_assert_eq!(a, v);
+                    }
+                    prop_assert_eq!(a, want);
+                    prop_assert!(a.validated().is_ok(), "{a:?}");
+                }
             }
         }
     }
