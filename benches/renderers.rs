@@ -16,7 +16,10 @@
 //! Run: `cargo bench --bench renderers`.
 
 // Index loops over parallel input arrays read like the renderer code they stand for.
-#![allow(clippy::needless_range_loop)]
+#![allow(
+    clippy::needless_range_loop,
+    reason = "index loops over parallel arrays, as the renderer code they stand for"
+)]
 
 use std::hint::black_box;
 use std::time::Duration;

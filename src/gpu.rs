@@ -27,7 +27,7 @@ use crate::{
 /// | 48 | `emission: vec3<f32>`, 60 `_pad2` |
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-#[allow(missing_docs)] // fields mirror Material's accessors one to one
+#[allow(missing_docs, reason = "fields mirror Material's accessors one to one")]
 pub struct GpuMaterial {
     pub ambient: [f32; 3],
     pub shininess: f32,
@@ -51,7 +51,7 @@ pub struct GpuMaterial {
 /// | 80 | `attenuation: vec4<f32>`: (c, l, q, 0), (P, ε, 0, 0), (r, 0, 0, 0) or (r, ε, 0, 0) |
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-#[allow(missing_docs)] // fields documented in the table above
+#[allow(missing_docs, reason = "fields documented in the table above")]
 pub struct GpuLight {
     pub position: [f32; 3],
     pub kind: u32,
@@ -75,7 +75,7 @@ pub struct GpuLight {
 /// | 32 | `model: u32` (0 Lambert, 1 Phong, 2 Blinn-Phong), 36 `gate: u32` (0 step, 1 cosine, 2 none), 40 `normalization: u32` (0 none, 1 energy, 2 exact), 44 `_pad0` |
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-#[allow(missing_docs)] // fields documented in the table above
+#[allow(missing_docs, reason = "fields documented in the table above")]
 pub struct GpuParams {
     pub viewer: [f32; 3],
     pub viewer_kind: u32,

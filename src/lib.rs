@@ -84,7 +84,10 @@
 #![deny(missing_docs)]
 #![deny(unsafe_code)]
 // `!(x > 0.0)` is used on purpose: unlike `x <= 0.0` it is also true for NaN.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    reason = "!(x > 0.0) is also true for NaN"
+)]
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 #[cfg(not(any(feature = "std", feature = "libm")))]

@@ -264,6 +264,10 @@ pub trait LightSource {
 /// A directional or point light with its falloff as one formula, so a shading loop evaluates it
 /// with no branch on its kind (see [`LightSource::flat`]). Only this crate builds one.
 #[doc(hidden)]
+#[expect(
+    unnameable_types,
+    reason = "returned by the hidden LightSource::flat hook, which only this crate's lights implement"
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlatLight {
     /// A point light's position, or a directional light's unit direction.

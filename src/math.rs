@@ -6,19 +6,19 @@
 #[cfg(feature = "std")]
 mod imp {
     #[inline(always)]
-    pub fn sqrt(x: f32) -> f32 {
+    pub(crate) fn sqrt(x: f32) -> f32 {
         x.sqrt()
     }
     #[inline(always)]
-    pub fn sqrt_f64(x: f64) -> f64 {
+    pub(crate) fn sqrt_f64(x: f64) -> f64 {
         x.sqrt()
     }
     #[inline(always)]
-    pub fn powf(x: f32, y: f32) -> f32 {
+    pub(crate) fn powf(x: f32, y: f32) -> f32 {
         x.powf(y)
     }
     #[inline(always)]
-    pub fn cos(x: f32) -> f32 {
+    pub(crate) fn cos(x: f32) -> f32 {
         x.cos()
     }
 }
@@ -26,19 +26,19 @@ mod imp {
 #[cfg(all(not(feature = "std"), feature = "libm"))]
 mod imp {
     #[inline(always)]
-    pub fn sqrt(x: f32) -> f32 {
+    pub(crate) fn sqrt(x: f32) -> f32 {
         libm::sqrtf(x)
     }
     #[inline(always)]
-    pub fn sqrt_f64(x: f64) -> f64 {
+    pub(crate) fn sqrt_f64(x: f64) -> f64 {
         libm::sqrt(x)
     }
     #[inline(always)]
-    pub fn powf(x: f32, y: f32) -> f32 {
+    pub(crate) fn powf(x: f32, y: f32) -> f32 {
         libm::powf(x, y)
     }
     #[inline(always)]
-    pub fn cos(x: f32) -> f32 {
+    pub(crate) fn cos(x: f32) -> f32 {
         libm::cosf(x)
     }
 }
@@ -47,16 +47,16 @@ mod imp {
 /// message from being buried under unresolved-name errors.
 #[cfg(not(any(feature = "std", feature = "libm")))]
 mod imp {
-    pub fn sqrt(x: f32) -> f32 {
+    pub(crate) fn sqrt(x: f32) -> f32 {
         x
     }
-    pub fn sqrt_f64(x: f64) -> f64 {
+    pub(crate) fn sqrt_f64(x: f64) -> f64 {
         x
     }
-    pub fn powf(x: f32, _y: f32) -> f32 {
+    pub(crate) fn powf(x: f32, _y: f32) -> f32 {
         x
     }
-    pub fn cos(x: f32) -> f32 {
+    pub(crate) fn cos(x: f32) -> f32 {
         x
     }
 }

@@ -152,7 +152,7 @@ pub(crate) const LOG2_7: [f32; 7] = [
 pub(crate) const EXP2_3: [f32; 3] = [0.6932829, 0.24221076, 0.055008747];
 pub(crate) const EXP2_4: [f32; 4] = [0.6931242, 0.24024099, 0.055906415, 0.009582836];
 // The first coefficient is fitted, not ln 2 typed in (it happens to round near it).
-#[allow(clippy::approx_constant)]
+#[allow(clippy::approx_constant, reason = "a fitted coefficient, not ln 2")]
 pub(crate) const EXP2_5: [f32; 5] = [0.693147, 0.24022242, 0.05550734, 0.009671513, 0.0013264715];
 
 /// The largest exponent repeated squaring handles; larger ones use the fallback. Its error grows
@@ -621,7 +621,7 @@ fn log2_poly<const L: usize, const E: usize>(x: f32, k: &PolyConsts<L, E>) -> f3
 #[inline(always)]
 fn exp2_parts<const L: usize, const E: usize>(y: f32, k: &PolyConsts<L, E>) -> (f32, i32) {
     // Not `clamp`: `max` also maps NaN to the lower bound.
-    #[allow(clippy::manual_clamp)]
+    #[allow(clippy::manual_clamp, reason = "max also maps NaN to the lower bound")]
     let y = y.max(k.flush).min(0.0);
     // Round to nearest with the 1.5·2^23 trick (|y| ≤ 100 ≪ 2^22): the integer lands in the low
     // mantissa bits of `big`, so no float-to-int conversion (which does not vectorise) is needed.
@@ -692,7 +692,7 @@ fn lobe_pow_squaring(x: f32, s: f32) -> f32 {
     }
     // Branch-free in `x`: about half of all shaded points have a base ≤ 0, and a branch on it
     // mispredicts. `max` maps NaN to 0.
-    #[allow(clippy::manual_clamp)]
+    #[allow(clippy::manual_clamp, reason = "max also maps NaN to 0")]
     let r = pow_u32(x.max(0.0).min(1.0), s as u32);
     if x > 0.0 { r } else { 0.0 }
 }
@@ -859,7 +859,7 @@ pub(crate) mod error_bounds {
     /// The worst cases the search behind the module docs' table found, one per strategy: every
     /// `x` within 2000 ulps of each is checked at its exponent. (Poly3's is one ulp below `√½`,
     /// where `log2`'s reduction switches exponent: a measured point, not the constant.)
-    #[allow(clippy::approx_constant)]
+    #[allow(clippy::approx_constant, reason = "a measured point, not the constant")]
     const WORST: [(PowStrategy, f32, f32); 7] = [
         (PowStrategy::Exact, 0.9920426, 2082.236),
         (PowStrategy::Squaring, 0.9846978, 1024.0),

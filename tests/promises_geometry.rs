@@ -31,7 +31,7 @@ mod exact {
     /// A signed fixed-point number with unnormalised 32-bit limbs (held in `i128`, so a few dozen
     /// additions cannot overflow them).
     #[derive(Clone, Copy, Debug)]
-    pub struct Fixed([i128; LIMBS]);
+    pub(crate) struct Fixed([i128; LIMBS]);
 
     /// `x = ±m · 2^e` with `m < 2²⁴`.
     fn parts(x: f32) -> (bool, u128, i64) {
@@ -48,12 +48,12 @@ mod exact {
     }
 
     impl Fixed {
-        pub fn zero() -> Self {
+        pub(crate) fn zero() -> Self {
             Fixed([0; LIMBS])
         }
 
         /// `Σ sign · Π factors` over the given terms.
-        pub fn sum(terms: &[(i32, &[f32])]) -> Self {
+        pub(crate) fn sum(terms: &[(i32, &[f32])]) -> Self {
             let mut s = Fixed::zero();
             for &(sign, factors) in terms {
                 s.add(sign < 0, factors);
@@ -62,7 +62,7 @@ mod exact {
         }
 
         /// Adds `±Π factors`, exactly.
-        pub fn add(&mut self, negate: bool, factors: &[f32]) {
+        pub(crate) fn add(&mut self, negate: bool, factors: &[f32]) {
             let (mut m, mut e, mut neg) = (1u128, 0i64, negate);
             for &f in factors {
                 let (n, fm, fe) = parts(f);
@@ -116,7 +116,7 @@ mod exact {
             (sign, mag)
         }
 
-        pub fn sign(&self) -> i64 {
+        pub(crate) fn sign(&self) -> i64 {
             self.sign_magnitude().0
         }
 
@@ -151,17 +151,17 @@ mod exact {
         }
 
         /// The value rounded to the nearest `f32` (∞ beyond its range).
-        pub fn to_f32(self) -> f32 {
+        pub(crate) fn to_f32(self) -> f32 {
             self.scaled_to_f32(0)
         }
 
         /// `value · 2^scale` rounded to the nearest `f32`.
-        pub fn scaled_to_f32(&self, scale: i64) -> f32 {
+        pub(crate) fn scaled_to_f32(&self, scale: i64) -> f32 {
             self.round(scale, 24, -149) as f32
         }
 
         /// The value rounded to the nearest `f64`.
-        pub fn to_f64(self) -> f64 {
+        pub(crate) fn to_f64(self) -> f64 {
             self.round(0, 53, -1074)
         }
     }

@@ -1,23 +1,23 @@
 //! The benches' scene, shared by `benches/shading.rs` and `examples/performance.rs` (which
 //! measures the accuracy of the same configuration), so both describe exactly the same work.
-#![allow(dead_code)] // each includer uses its own subset
+#![allow(dead_code, reason = "each includer uses its own subset")]
 
 use glam::Vec3;
 
-pub const LIGHT_POS: Vec3 = Vec3::new(1.2, 1.0, 2.0);
-pub const VIEW_POS: Vec3 = Vec3::new(0.0, 0.0, 3.0);
-pub const ATT: (f32, f32, f32) = (1.0, 0.09, 0.032);
-pub const LA: Vec3 = Vec3::splat(0.2);
-pub const LD: Vec3 = Vec3::splat(0.5);
-pub const LS: Vec3 = Vec3::splat(1.0);
-pub const KA: Vec3 = Vec3::new(1.0, 0.5, 0.31);
-pub const KD: Vec3 = Vec3::new(1.0, 0.5, 0.31);
-pub const KS: Vec3 = Vec3::splat(0.5);
+pub(crate) const LIGHT_POS: Vec3 = Vec3::new(1.2, 1.0, 2.0);
+pub(crate) const VIEW_POS: Vec3 = Vec3::new(0.0, 0.0, 3.0);
+pub(crate) const ATT: (f32, f32, f32) = (1.0, 0.09, 0.032);
+pub(crate) const LA: Vec3 = Vec3::splat(0.2);
+pub(crate) const LD: Vec3 = Vec3::splat(0.5);
+pub(crate) const LS: Vec3 = Vec3::splat(1.0);
+pub(crate) const KA: Vec3 = Vec3::new(1.0, 0.5, 0.31);
+pub(crate) const KD: Vec3 = Vec3::new(1.0, 0.5, 0.31);
+pub(crate) const KS: Vec3 = Vec3::splat(0.5);
 
 /// splitmix64: a small deterministic generator, so every run shades the same points.
-pub struct Rng(pub u64);
+pub(crate) struct Rng(pub u64);
 impl Rng {
-    pub fn next_f32(&mut self) -> f32 {
+    pub(crate) fn next_f32(&mut self) -> f32 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -25,13 +25,13 @@ impl Rng {
         z ^= z >> 31;
         (z >> 40) as f32 / (1u64 << 24) as f32
     }
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+    pub(crate) fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.next_f32()
     }
 }
 
 /// `n` random positions in a 4-unit box around the origin and random unit normals.
-pub fn points(n: usize, seed: u64) -> (Vec<Vec3>, Vec<Vec3>) {
+pub(crate) fn points(n: usize, seed: u64) -> (Vec<Vec3>, Vec<Vec3>) {
     let mut rng = Rng(seed);
     let mut p = Vec::with_capacity(n);
     let mut nn = Vec::with_capacity(n);

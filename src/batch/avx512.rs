@@ -612,7 +612,10 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8, const FOLD
 mod tests {
     // Calling a `#[target_feature]` function needs `unsafe`; each call is guarded by the CPU
     // check, as in `dispatch`.
-    #![allow(unsafe_code)]
+    #![allow(
+        unsafe_code,
+        reason = "the tests call the AVX-512 kernel after checking the CPU, as dispatch does"
+    )]
 
     use super::*;
     use crate::batch::Level;

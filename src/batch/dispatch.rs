@@ -2,7 +2,10 @@
 //! kernel's tests have their own):
 //! calling a `#[target_feature]` kernel after checking the CPU.
 
-#![allow(unsafe_code)]
+#![allow(
+    unsafe_code,
+    reason = "the one dispatch site: target-feature kernels called after the CPU check"
+)]
 
 use super::kernel::{PointInputs, Setup, run, run_inputs};
 use super::level::Level;

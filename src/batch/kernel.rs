@@ -762,7 +762,10 @@ fn fixup_inputs<M: BatchModel, L: BatchLight>(
 /// One chunk of [`run_with`]: its points `i..i + count` shaded, the lanes the scalar path must
 /// redo flagged.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one argument per lane array the kernel reads"
+)]
 fn shade_chunk<M, L, R, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
     k: &Setup<'_, M, L>,
     p: &[Lanes; 3],
@@ -783,7 +786,10 @@ where
         None
     };
     // A match, not `Option::map`: a closure may be left out of line, without the level's features.
-    #[allow(clippy::manual_map)]
+    #[allow(
+        clippy::manual_map,
+        reason = "a closure may be left out of line, without the level's target features"
+    )]
     let surface = match raw {
         Some(raw) => Some(SurfaceLanes::new(&k.lm, &raw)),
         None => None,

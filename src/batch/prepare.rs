@@ -12,7 +12,7 @@ use crate::{BlinnPhong, Lambert, Phong};
 
 /// The specular lobe's shape, resolved once per call.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Lobe {
+pub(crate) enum Lobe {
     /// No specular work.
     None,
     /// `max(R·V, 0)^s`, `R·V = 2(N·L)(N·V) − L·V`.
@@ -23,6 +23,10 @@ pub enum Lobe {
 
 /// A model's constants for one shininess: the lobe, its gate, the two scale factors, the exponent
 /// applied to the lobe's base and the pow strategy.
+#[expect(
+    unnameable_types,
+    reason = "returned by the hidden, sealed BatchModel/BatchLight hooks: only this crate implements or calls them"
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LaneModel {
     pub(crate) lobe: Lobe,
@@ -40,6 +44,10 @@ pub struct LaneModel {
 }
 
 /// A light the kernel handles, with its colours.
+#[expect(
+    unnameable_types,
+    reason = "returned by the hidden, sealed BatchModel/BatchLight hooks: only this crate implements or calls them"
+)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LaneLight {
     /// A unit direction toward the light, factor 1.
@@ -57,6 +65,10 @@ pub enum LaneLight {
 
 pub(crate) mod sealed {
     /// Keeps the batch traits closed: the kernel knows every implementation.
+    #[expect(
+        unnameable_types,
+        reason = "the sealed-trait pattern: nameable outside would unseal it"
+    )]
     pub trait Sealed {}
 }
 

@@ -6,7 +6,7 @@
 //! at most a few `f32::EPSILON`.
 
 // Each test file uses a different subset of these strategies.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each test file uses a different subset")]
 
 use core::f64::consts::PI;
 
@@ -17,7 +17,7 @@ use phong::{
 use proptest::prelude::*;
 
 /// A unit vector, uniform on the sphere (Archimedes: uniform `z` and uniform azimuth).
-pub fn unit_vec3() -> impl Strategy<Value = Vec3> {
+pub(crate) fn unit_vec3() -> impl Strategy<Value = Vec3> {
     (-1.0f64..=1.0, 0.0f64..(2.0 * PI)).prop_map(|(z, phi)| unit_from(z, phi))
 }
 
@@ -29,7 +29,7 @@ fn unit_from(z: f64, phi: f64) -> Vec3 {
 
 /// A unit vector in the open hemisphere around unit `n`, at least `min_cos` above the horizon
 /// (`v·n ≥ min_cos`, with `min_cos ∈ [0, 1)`), uniform in solid angle over that cap.
-pub fn hemisphere_min(n: Vec3, min_cos: f64) -> impl Strategy<Value = Vec3> {
+pub(crate) fn hemisphere_min(n: Vec3, min_cos: f64) -> impl Strategy<Value = Vec3> {
     (min_cos..=1.0f64, 0.0f64..(2.0 * PI)).prop_map(move |(c, phi)| {
         let (t, b) = basis(n.as_dvec3());
         let s = (1.0 - c * c).max(0.0).sqrt();
@@ -40,13 +40,13 @@ pub fn hemisphere_min(n: Vec3, min_cos: f64) -> impl Strategy<Value = Vec3> {
 }
 
 /// A unit vector in the hemisphere around unit `n`, at least 1e-3 above the horizon.
-pub fn hemisphere(n: Vec3) -> impl Strategy<Value = Vec3> {
+pub(crate) fn hemisphere(n: Vec3) -> impl Strategy<Value = Vec3> {
     hemisphere_min(n, 1e-3)
 }
 
 /// Two unit vectors spanning the plane perpendicular to unit `n` (Duff et al. 2017, "Building an
 /// orthonormal basis, revisited").
-pub fn basis(n: DVec3) -> (DVec3, DVec3) {
+pub(crate) fn basis(n: DVec3) -> (DVec3, DVec3) {
     let sign = 1.0f64.copysign(n.z);
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
@@ -57,14 +57,14 @@ pub fn basis(n: DVec3) -> (DVec3, DVec3) {
 }
 
 /// A unit normal and a unit light direction above its horizon (`N·L ≥ 1e-3`).
-pub fn normal_and_light() -> impl Strategy<Value = (Vec3, Vec3)> {
+pub(crate) fn normal_and_light() -> impl Strategy<Value = (Vec3, Vec3)> {
     unit_vec3().prop_flat_map(|n| (Just(n), hemisphere(n)))
 }
 
 /// `N`, `L`, `V` in one plane, as the angles of `L` and `V` from `N` within that plane (radians,
 /// each in `(−π/2 + 0.01, π/2 − 0.01)`, so both are above the horizon and `‖L + V‖ ≥ 2 sin 0.01`).
 /// Returns `(n, l, v, theta_l, theta_v)`; the plane and `N` are random.
-pub fn coplanar_nlv() -> impl Strategy<Value = (Vec3, Vec3, Vec3, f64, f64)> {
+pub(crate) fn coplanar_nlv() -> impl Strategy<Value = (Vec3, Vec3, Vec3, f64, f64)> {
     let lim = PI / 2.0 - 0.01;
     (unit_vec3(), 0.0f64..(2.0 * PI), -lim..lim, -lim..lim).prop_map(|(n, phi, tl, tv)| {
         let nd = n.as_dvec3();
@@ -76,23 +76,23 @@ pub fn coplanar_nlv() -> impl Strategy<Value = (Vec3, Vec3, Vec3, f64, f64)> {
 }
 
 /// A point with coordinates in `[-100, 100]`.
-pub fn point() -> impl Strategy<Value = Vec3> {
+pub(crate) fn point() -> impl Strategy<Value = Vec3> {
     (-100.0f32..100.0, -100.0f32..100.0, -100.0f32..100.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
 }
 
 /// A triangle with vertices in `[-100, 100]³` (possibly thin, never non-finite).
-pub fn triangle() -> impl Strategy<Value = (Vec3, Vec3, Vec3)> {
+pub(crate) fn triangle() -> impl Strategy<Value = (Vec3, Vec3, Vec3)> {
     (point(), point(), point())
 }
 
 /// A non-zero translation of up to 1e3 per coordinate.
-pub fn translation() -> impl Strategy<Value = Vec3> {
+pub(crate) fn translation() -> impl Strategy<Value = Vec3> {
     (-1e3f32..1e3, -1e3f32..1e3, -1e3f32..1e3).prop_map(|(x, y, z)| Vec3::new(x, y, z))
 }
 
 /// A shininess: the special values 0, 0.5 and 1, small integers, tutorial powers of two, and any
 /// value in `[0, 512]`.
-pub fn shininess() -> impl Strategy<Value = f32> {
+pub(crate) fn shininess() -> impl Strategy<Value = f32> {
     prop_oneof![
         Just(0.0f32),
         Just(0.5f32),
@@ -104,7 +104,7 @@ pub fn shininess() -> impl Strategy<Value = f32> {
 }
 
 /// A linear RGB colour with channels in `[0, 2]` (HDR allowed).
-pub fn color() -> impl Strategy<Value = Vec3> {
+pub(crate) fn color() -> impl Strategy<Value = Vec3> {
     (0.0f32..=2.0, 0.0f32..=2.0, 0.0f32..=2.0).prop_map(|(r, g, b)| Vec3::new(r, g, b))
 }
 
@@ -114,7 +114,7 @@ fn coefficient() -> impl Strategy<Value = f32> {
 }
 
 /// Any attenuation form with parameters in its documented domain.
-pub fn attenuation() -> impl Strategy<Value = Attenuation> {
+pub(crate) fn attenuation() -> impl Strategy<Value = Attenuation> {
     prop_oneof![
         Just(Attenuation::None),
         (coefficient(), coefficient(), coefficient())
@@ -126,7 +126,7 @@ pub fn attenuation() -> impl Strategy<Value = Attenuation> {
 }
 
 /// A specular gate.
-pub fn gate() -> impl Strategy<Value = SpecularGate> {
+pub(crate) fn gate() -> impl Strategy<Value = SpecularGate> {
     prop_oneof![
         Just(SpecularGate::Step),
         Just(SpecularGate::Cosine),
@@ -135,7 +135,7 @@ pub fn gate() -> impl Strategy<Value = SpecularGate> {
 }
 
 /// An energy normalisation.
-pub fn normalization() -> impl Strategy<Value = Normalization> {
+pub(crate) fn normalization() -> impl Strategy<Value = Normalization> {
     prop_oneof![
         Just(Normalization::None),
         Just(Normalization::Energy),
@@ -144,12 +144,12 @@ pub fn normalization() -> impl Strategy<Value = Normalization> {
 }
 
 /// A `pow` strategy.
-pub fn pow_strategy() -> impl Strategy<Value = PowStrategy> {
+pub(crate) fn pow_strategy() -> impl Strategy<Value = PowStrategy> {
     prop_oneof![Just(PowStrategy::Exact), Just(PowStrategy::Squaring)]
 }
 
 /// Any of the three models, with any gate, normalisation and `pow` strategy.
-pub fn model() -> impl Strategy<Value = Model> {
+pub(crate) fn model() -> impl Strategy<Value = Model> {
     (0u8..3, gate(), normalization(), pow_strategy()).prop_map(|(k, gate, normalization, pow)| {
         match k {
             0 => Model::Lambert(Lambert { normalization }),
@@ -168,13 +168,13 @@ pub fn model() -> impl Strategy<Value = Model> {
 }
 
 /// A unit quaternion's rotation matrix, from a random axis and angle.
-pub fn rotation() -> impl Strategy<Value = Mat3> {
+pub(crate) fn rotation() -> impl Strategy<Value = Mat3> {
     (unit_vec3(), -PI..PI).prop_map(|(axis, angle)| Mat3::from_axis_angle(axis, angle as f32))
 }
 
 /// An invertible linear map `R₁ · diag(s) · R₂`: rotations around a non-uniform scale whose factors
 /// have magnitudes in `[0.1, 10]` and random signs (so about half have a negative determinant).
-pub fn invertible_mat3() -> impl Strategy<Value = Mat3> {
+pub(crate) fn invertible_mat3() -> impl Strategy<Value = Mat3> {
     let scale = (0.1f32..=10.0, any::<bool>()).prop_map(|(m, neg)| if neg { -m } else { m });
     (rotation(), rotation(), scale.clone(), scale.clone(), scale)
         .prop_map(|(r1, r2, a, b, c)| r1 * Mat3::from_diagonal(Vec3::new(a, b, c)) * r2)

@@ -4,7 +4,7 @@
 //! `rows(n)` runs them all with `n` samples per row from fixed seeds. The accuracy example calls it
 //! with a large `n` and writes the tables; tests/accuracy_bounds.rs calls it with a small `n` and
 //! asserts each row against a bound. Needs `crate::reference` and `crate::rng` next to it.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each includer uses its own subset")]
 
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use phong::{
@@ -20,7 +20,7 @@ use crate::rng::Rng;
 // Error statistics
 
 /// The spacing of `f32` values at `|x|` (the subnormal spacing below `f32::MIN_POSITIVE`).
-pub fn ulp_f32(x: f64) -> f64 {
+pub(crate) fn ulp_f32(x: f64) -> f64 {
     let a = (x.abs() as f32).max(f32::MIN_POSITIVE);
     if !a.is_finite() {
         return f64::from(f32::MAX) * f64::EPSILON; // beyond the range: the last spacing, 2^104
@@ -31,7 +31,7 @@ pub fn ulp_f32(x: f64) -> f64 {
 
 /// Maximum errors over a sample.
 #[derive(Clone, Debug, Default)]
-pub struct Stats {
+pub(crate) struct Stats {
     pub n: usize,
     pub max_abs: f64,
     pub max_rel: f64,
@@ -44,7 +44,13 @@ pub struct Stats {
 
 impl Stats {
     /// One scalar output. Relative error counts only where `|want| ≥ floor`.
-    pub fn scalar(&mut self, got: f32, want: f64, floor: f64, input: impl FnOnce() -> String) {
+    pub(crate) fn scalar(
+        &mut self,
+        got: f32,
+        want: f64,
+        floor: f64,
+        input: impl FnOnce() -> String,
+    ) {
         self.n += 1;
         if !got.is_finite() {
             if want.is_finite() {
@@ -75,7 +81,13 @@ impl Stats {
 
     /// One vector output: abs = largest component error, rel = ‖got − want‖/‖want‖ (where
     /// `‖want‖ ≥ floor`), ulp = largest component error in ulps of the largest component of `want`.
-    pub fn vector(&mut self, got: Vec3, want: DVec3, floor: f64, input: impl FnOnce() -> String) {
+    pub(crate) fn vector(
+        &mut self,
+        got: Vec3,
+        want: DVec3,
+        floor: f64,
+        input: impl FnOnce() -> String,
+    ) {
         self.n += 1;
         if !got.is_finite() {
             if want.is_finite() {
@@ -107,7 +119,13 @@ impl Stats {
 
     /// One matrix output, by its columns (as [`vector`](Self::vector) on the stacked columns,
     /// relative to the largest entry).
-    pub fn matrix(&mut self, got: Mat3, want: DMat3, floor: f64, input: impl FnOnce() -> String) {
+    pub(crate) fn matrix(
+        &mut self,
+        got: Mat3,
+        want: DMat3,
+        floor: f64,
+        input: impl FnOnce() -> String,
+    ) {
         self.n += 1;
         if !got.is_finite() {
             self.non_finite += 1;
@@ -131,7 +149,7 @@ impl Stats {
 
 /// One row of the accuracy tables.
 #[derive(Clone, Debug)]
-pub struct Row {
+pub(crate) struct Row {
     /// The function (or group) measured.
     pub function: &'static str,
     /// `"ordinary"` or `"adversarial"`.
@@ -147,7 +165,7 @@ pub struct Row {
 
 impl Row {
     /// The stable key the bounds test uses: `function | domain`.
-    pub fn key(&self) -> String {
+    pub(crate) fn key(&self) -> String {
         format!("{} | {}", self.function, self.domain)
     }
 }
@@ -179,7 +197,7 @@ fn row(
 /// given `f32` vectors (three products and two sums, each rounded once; both vectors unit to
 /// within a few `2⁻²⁴`), so `4·2⁻²⁴ = 2⁻²²` covers it with margin. Farther from the edge the
 /// crate's decision must be the exact one.
-pub const SPOT_EDGE_BAND: f64 = 1.0 / 4_194_304.0;
+pub(crate) const SPOT_EDGE_BAND: f64 = 1.0 / 4_194_304.0;
 
 // ---------------------------------------------------------------------------------------------
 // Inputs
@@ -296,7 +314,7 @@ fn colour(rng: &mut Rng, hi: f64) -> Vec3 {
 
 /// A scene as a renderer would set one up: 1–4 lights (directional, point, spot) a few units from
 /// a point in the unit cube, a viewer 2–10 units away, plastic-like materials, s in [1, 256].
-pub struct ShadeCase {
+pub(crate) struct ShadeCase {
     pub model: Model,
     pub material: Material,
     pub lights: Vec<Light>,
@@ -328,7 +346,7 @@ fn light(rng: &mut Rng, p: Vec3, dist: f64, shininess_wide: bool) -> Light {
     }
 }
 
-pub fn typical_scene(rng: &mut Rng) -> ShadeCase {
+pub(crate) fn typical_scene(rng: &mut Rng) -> ShadeCase {
     let position = Vec3::new(
         rng.range(-1.0, 1.0) as f32,
         rng.range(-1.0, 1.0) as f32,
@@ -360,7 +378,7 @@ pub fn typical_scene(rng: &mut Rng) -> ShadeCase {
 
 /// Hard scenes: grazing normals, lights from 1e-6 to 1e6 away, far and near viewers, s in
 /// [0, 10⁴], positions up to 1e4 from the origin.
-pub fn hard_scene(rng: &mut Rng) -> ShadeCase {
+pub(crate) fn hard_scene(rng: &mut Rng) -> ShadeCase {
     let position = (rng.log_range(1e-3, 1e4) * rng.unit_dvec3()).as_vec3();
     let lights: Vec<Light> = (0..1 + rng.below(4))
         .map(|_| {
@@ -405,7 +423,7 @@ pub fn hard_scene(rng: &mut Rng) -> ShadeCase {
 }
 
 /// The shading result of the crate and of the reference.
-pub fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
+pub(crate) fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
     let scene = phong::Scene {
         lights: &c.lights,
         ambient: c.ambient,
@@ -427,7 +445,7 @@ pub fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
 
 /// Shading error with the 8-bit sRGB comparison.
 #[derive(Clone, Debug, Default)]
-pub struct ShadeStats {
+pub(crate) struct ShadeStats {
     pub stats: Stats,
     pub channels: usize,
     /// Channels whose 8-bit sRGB value differs from the reference's.
@@ -437,12 +455,12 @@ pub struct ShadeStats {
 }
 
 impl ShadeStats {
-    pub fn fraction(&self) -> f64 {
+    pub(crate) fn fraction(&self) -> f64 {
         self.srgb8_differ as f64 / self.channels.max(1) as f64
     }
 }
 
-pub fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
+pub(crate) fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
     let mut rng = Rng::new(seed);
     let mut s = ShadeStats::default();
     for _ in 0..n {
@@ -472,7 +490,7 @@ pub fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
 // The rows
 
 /// Every row, `n` samples each, from fixed seeds (a row's seed does not depend on `n`).
-pub fn rows(n: usize) -> Vec<Row> {
+pub(crate) fn rows(n: usize) -> Vec<Row> {
     let mut out = Vec::new();
     geometry(n, &mut out);
     attenuation(n, &mut out);
@@ -1162,7 +1180,7 @@ fn colour_rows(n: usize, out: &mut Vec<Row>) {
 /// Phong's lobe `cos(θ)^s` against Blinn-Phong's `cos(θ/2)^(4s)` with `V` turned from `R` by `θ`
 /// in the plane of incidence (where `angle(N, H) = θ/2` exactly): the largest absolute
 /// difference over `θ ∈ [0, π/2]`, in `f64`, and the second-order prediction `e⁻²/s`.
-pub fn four_times_rule_in_plane(s: f64) -> (f64, f64) {
+pub(crate) fn four_times_rule_in_plane(s: f64) -> (f64, f64) {
     let mut worst: f64 = 0.0;
     let steps = 20_000;
     for i in 0..=steps {
@@ -1176,7 +1194,7 @@ pub fn four_times_rule_in_plane(s: f64) -> (f64, f64) {
 
 /// The same comparison with the crate's own `f32` lobes on actual vectors: `L` at incidence
 /// `theta_i`, `V` turned from `R` by `θ` in the plane of incidence.
-pub fn four_times_rule_crate(s: f32, theta_i: f64) -> f64 {
+pub(crate) fn four_times_rule_crate(s: f32, theta_i: f64) -> f64 {
     let n = Vec3::Z;
     let l = DVec3::new(theta_i.sin(), 0.0, theta_i.cos());
     let mut worst: f64 = 0.0;
@@ -1197,7 +1215,7 @@ pub fn four_times_rule_crate(s: f32, theta_i: f64) -> f64 {
 /// The exponent ratio `s_Blinn / s_Phong` that makes both lobes fall to one half at the same
 /// deviation `δ` of `V` from `R`, for `L` at incidence `theta_i`, with `V` turned in the plane of
 /// incidence (`in_plane`) or perpendicular to it. Second order predicts 4 and `4 cos²θi`.
-pub fn matching_ratio(s: f64, theta_i: f64, in_plane: bool) -> f64 {
+pub(crate) fn matching_ratio(s: f64, theta_i: f64, in_plane: bool) -> f64 {
     let n = DVec3::Z;
     let l = DVec3::new(theta_i.sin(), 0.0, theta_i.cos());
     let rr = r::reflect(n, l);

@@ -2,7 +2,7 @@
 //! and the angular error of each against the exact normal of the `f32` vertices.
 //!
 //! Needs `crate::reference` and `crate::rng` declared next to it.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each includer uses its own subset")]
 
 use glam::{DVec3, Vec3};
 
@@ -11,7 +11,7 @@ use crate::rng::Rng;
 
 /// The two kinds of sliver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shape {
+pub(crate) enum Shape {
     /// One short edge: two long, nearly parallel edges meet at a sharp tip.
     Needle,
     /// No short edge: one angle close to 180°, the third vertex just off the longest edge.
@@ -20,7 +20,7 @@ pub enum Shape {
 
 /// One triangle of the set, with the parameters it was made from.
 #[derive(Clone, Copy, Debug)]
-pub struct Sliver {
+pub(crate) struct Sliver {
     pub shape: Shape,
     /// Height over longest edge.
     pub aspect: f64,
@@ -31,9 +31,9 @@ pub struct Sliver {
     pub p: [Vec3; 3],
 }
 
-pub const ASPECTS: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5];
-pub const SIZES: [f64; 3] = [1e-2, 1e-1, 1.0];
-pub const OFFSETS: [f64; 6] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5];
+pub(crate) const ASPECTS: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5];
+pub(crate) const SIZES: [f64; 3] = [1e-2, 1e-1, 1.0];
+pub(crate) const OFFSETS: [f64; 6] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5];
 const PERMUTATIONS: [[usize; 3]; 6] = [
     [0, 1, 2],
     [0, 2, 1],
@@ -46,7 +46,7 @@ const PERMUTATIONS: [[usize; 3]; 6] = [
 /// The adversarial set: every shape × aspect × size × offset, `per_cell` random orientations and
 /// placements each, every one of the 6 vertex orders. Triangles whose `f32` vertices have exactly
 /// zero area (the sliver was rounded flat) are left out and counted in the second return value.
-pub fn sliver_set(rng: &mut Rng, per_cell: usize) -> (Vec<Sliver>, usize) {
+pub(crate) fn sliver_set(rng: &mut Rng, per_cell: usize) -> (Vec<Sliver>, usize) {
     let mut out = Vec::new();
     let mut flat = 0;
     for shape in [Shape::Needle, Shape::Cap] {
@@ -93,19 +93,19 @@ pub fn sliver_set(rng: &mut Rng, per_cell: usize) -> (Vec<Sliver>, usize) {
 }
 
 /// A method for the (unnormalised) normal of a triangle.
-pub struct Candidate {
+pub(crate) struct Candidate {
     pub name: &'static str,
     pub run: fn(Vec3, Vec3, Vec3) -> Vec3,
 }
 
 /// Naive `f32`: `(P1 − P0) × (P2 − P0)`.
-pub fn naive(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub(crate) fn naive(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     (p1 - p0).cross(p2 - p0)
 }
 
 /// Pivoting: the cross product of the two edges leaving the vertex opposite the longest edge
 /// (the two shorter edges), in the cyclic order that keeps the orientation.
-pub fn pivot(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub(crate) fn pivot(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     let l0 = (p2 - p1).length_squared(); // opposite P0
     let l1 = (p0 - p2).length_squared(); // opposite P1
     let l2 = (p1 - p0).length_squared(); // opposite P2
@@ -119,7 +119,7 @@ pub fn pivot(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
 }
 
 /// `a·b − c·d` by Kahan's algorithm: one FMA recovers the rounding error of `c·d` exactly.
-pub fn kahan_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
+pub(crate) fn kahan_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
     let w = c * d;
     let e = (-c).mul_add(d, w);
     let f = a.mul_add(b, -w);
@@ -127,7 +127,7 @@ pub fn kahan_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
 }
 
 /// The cross product of the `f32` edges with every component by Kahan's difference of products.
-pub fn kahan(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub(crate) fn kahan(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     let (a, b) = (p1 - p0, p2 - p0);
     Vec3::new(
         kahan_diff_of_products(a.y, b.z, a.z, b.y),
@@ -137,7 +137,7 @@ pub fn kahan(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
 }
 
 /// The candidates in table order; the crate's own function last.
-pub fn candidates() -> [Candidate; 4] {
+pub(crate) fn candidates() -> [Candidate; 4] {
     [
         Candidate {
             name: "naive f32 (P1−P0)×(P2−P0)",
@@ -160,13 +160,13 @@ pub fn candidates() -> [Candidate; 4] {
 
 /// The angle in radians between `got` and the exact normal of the triangle; `π` for a zero or
 /// non-finite answer (the method lost the normal entirely).
-pub fn angular_error(got: Vec3, t: &Sliver) -> f64 {
+pub(crate) fn angular_error(got: Vec3, t: &Sliver) -> f64 {
     let exact = reference::triangle_area_normal(t.p[0], t.p[1], t.p[2]);
     angle_between(got.as_dvec3(), exact)
 }
 
 /// The angle between two non-zero vectors, accurate for tiny angles.
-pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
+pub(crate) fn angle_between(a: DVec3, b: DVec3) -> f64 {
     if !a.is_finite() || a == DVec3::ZERO || b == DVec3::ZERO {
         return core::f64::consts::PI;
     }
@@ -176,7 +176,7 @@ pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
 
 /// Worst and median of a list of errors, and how many were total losses (`π`).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Summary {
+pub(crate) struct Summary {
     pub worst: f64,
     pub median: f64,
     pub p99: f64,
@@ -184,7 +184,7 @@ pub struct Summary {
     pub n: usize,
 }
 
-pub fn summarize(mut e: Vec<f64>) -> Summary {
+pub(crate) fn summarize(mut e: Vec<f64>) -> Summary {
     if e.is_empty() {
         return Summary::default();
     }
@@ -200,7 +200,10 @@ pub fn summarize(mut e: Vec<f64>) -> Summary {
 }
 
 /// Each candidate's summary over the triangles `filter` accepts.
-pub fn study(set: &[Sliver], filter: impl Fn(&Sliver) -> bool) -> Vec<(&'static str, Summary)> {
+pub(crate) fn study(
+    set: &[Sliver],
+    filter: impl Fn(&Sliver) -> bool,
+) -> Vec<(&'static str, Summary)> {
     candidates()
         .iter()
         .map(|c| {

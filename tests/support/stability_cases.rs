@@ -4,7 +4,7 @@
 //! write it) and the `phong` function on the same input, and states what each does as a check on
 //! the measured values. `tests/stability_matrix.rs` asserts every check; the accuracy example
 //! prints the same rows, with the values it measured, into docs/stability.md.
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each includer uses its own subset")]
 
 use glam::{Mat3, Vec3};
 use phong::{
@@ -13,7 +13,7 @@ use phong::{
 };
 
 /// One side of a row: what runs, and what it is claimed to do.
-pub struct Side {
+pub(crate) struct Side {
     /// The code, as shown in the table.
     pub code: &'static str,
     /// Runs it; the values shown in the table.
@@ -25,7 +25,7 @@ pub struct Side {
 }
 
 /// One row of the matrix.
-pub struct Case {
+pub(crate) struct Case {
     /// The failure mode.
     pub mode: &'static str,
     /// The input, in words.
@@ -121,7 +121,7 @@ fn plastic() -> Material {
 }
 
 /// Every row, in table order.
-pub fn cases() -> Vec<Case> {
+pub(crate) fn cases() -> Vec<Case> {
     vec![
         Case {
             mode: "Phong's cut-off at shininess < 1",
@@ -586,7 +586,7 @@ fn angle_to_exact(n: Vec3, a: Vec3, b: Vec3, c: Vec3) -> f32 {
 }
 
 /// docs/stability.md: every row run, checked, and printed with its measured values.
-pub fn markdown() -> String {
+pub(crate) fn markdown() -> String {
     use std::fmt::Write as _;
     let mut o = String::new();
     o.push_str(
