@@ -3,10 +3,11 @@
 //! A renderer that shades on the GPU uploads these structs as they are: each is `#[repr(C)]`,
 //! [`bytemuck::Pod`], and laid out by the std140 rules (which for these structs coincide with std430
 //! and WGSL's uniform layout): every `vec3` starts on a 16-byte boundary and is followed by one
-//! scalar that fills its fourth slot. `shaders/phong.wgsl` and `shaders/phong.glsl` declare the same
-//! structs and implement the same models, gates and attenuation with the crate's conventions;
-//! `tests/gpu_layout.rs` checks with naga that both shaders parse and validate and that their struct
-//! sizes and member offsets equal these (`size_of`, `offset_of!`).
+//! scalar that fills its fourth slot. `shaders/phong.wgsl` declares the same structs and implements
+//! the same models, gates and attenuation with the crate's conventions, and `shaders/phong.glsl` is
+//! naga's GLSL translation of it; `tests/gpu_layout.rs` checks with naga that both shaders parse and
+//! validate, that their struct sizes and member offsets equal these (`size_of`, `offset_of!`), and
+//! that the GLSL is the translation of the current WGSL.
 //!
 //! Enumerations travel as `u32` codes, listed on each field.
 
