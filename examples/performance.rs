@@ -629,9 +629,9 @@ fn main() {
          `Poly7` form of `Auto` (the select on the material's exponent becomes a branch). What \
          remains is work the baseline does not do, each item measured on this machine by taking \
          it out of a probe loop: full-range normalisation by power-of-two scaling, where the \
-         baseline's `normalize` fails on huge and tiny vectors (about 10% for each of N, V and \
-         L); the squaring ladder of fixed length, whose 22 selects on the exponent become 22 \
-         branches (about 15%); the `f64` evaluation of an overflowing attenuation denominator, \
+         baseline's `normalize` fails on huge and tiny vectors (about 30% for N, V and L \
+         together, the decisive part: DESIGN.md has the probe); the squaring ladder of fixed length, whose 22 selects on the exponent become 22 \
+         branches (about 4%); the `f64` evaluation of an overflowing attenuation denominator, \
          which a vectorised loop computes beside the common one for every point (about 5%); the \
          masks for missing directions, the visibility clamp, the gate and the saturating \
          subtraction (1–4% each). Already taken out of the common path, as branches on what is \
