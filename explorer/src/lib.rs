@@ -264,7 +264,7 @@ impl App {
 
         let s = stats;
         ui.label(format!(
-            "Frame time: {} ({} pixels shaded, {} shader calls)",
+            "Frame time: {} ({} pixels drawn, {} points shaded)",
             format_duration(elapsed),
             s.pixels,
             s.shader_calls

@@ -3,10 +3,12 @@
 //! - [`Camera`]: a perspective camera; [`Mesh`]: icosphere, cube and plane with normals from
 //!   [`phong::vertex_normals`]; [`Framebuffer`]: linear colour, depth and triangle ids.
 //! - [`draw`]: near-plane clipping, a depth test and perspective-correct barycentric interpolation,
-//!   shading per vertex (Gouraud), per pixel (Phong shading) or adaptively per triangle with
+//!   shading per vertex (Gouraud), per pixel (Phong shading, deferred: every visible pixel once, at
+//!   the end of the draw, through [`SurfaceShader::shade_many`]) or adaptively per triangle with
 //!   [`phong::shading_rate::gouraud_within_tolerance`] ([`ShadingMode`]).
-//! - [`PhongShader`]: [`phong::shade`] as a [`SurfaceShader`], with one term or all, texture maps,
-//!   and light culling by [`phong::Attenuation::cull_radius`].
+//! - [`PhongShader`]: [`phong::shade`] as a [`SurfaceShader`], and the batch path
+//!   ([`phong::shade_gbuffer`]) for many points, with one term or all, texture maps, and light
+//!   culling by [`phong::Attenuation::cull_radius`].
 //! - [`Image`]: sRGB or raw 8-bit encoding, captions in a built-in 3×5 font, PNG output.
 
 #![deny(missing_docs)]
@@ -28,5 +30,5 @@ pub use camera::Camera;
 pub use framebuffer::Framebuffer;
 pub use image::Image;
 pub use mesh::Mesh;
-pub use rasterize::{DrawStats, ShadingMode, SurfaceShader, draw};
+pub use rasterize::{DrawStats, ShadingMode, SurfaceShader, draw, shade_each};
 pub use shader::{MAX_LIGHTS, PhongShader, Term, Texture};

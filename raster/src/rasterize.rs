@@ -1,5 +1,7 @@
 //! Drawing a mesh: near-plane clipping, a depth test, perspective-correct barycentric
-//! interpolation, and three shading rates.
+//! interpolation, and three shading rates. Per-pixel shading is deferred: the rasterizer keeps
+//! each visible pixel's interpolated position, normal and texture coordinate (a G-buffer), and
+//! shades them all at once at the end of the draw, through [`SurfaceShader::shade_many`].
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
@@ -10,7 +12,8 @@ use crate::{Camera, Framebuffer, Mesh};
 pub enum ShadingMode {
     /// Gouraud: shade each vertex, interpolate the colours.
     PerVertex,
-    /// Phong shading: interpolate the normal, renormalise it, shade each pixel.
+    /// Phong shading: interpolate the normal, renormalise it, shade each pixel (deferred: every
+    /// visible pixel of a draw is shaded once, after the depth test).
     PerPixel,
     /// Per vertex where [`SurfaceShader::per_vertex_ok`] says the difference is within its
     /// tolerance, per pixel elsewhere; decided once per triangle.
@@ -28,6 +31,90 @@ pub trait SurfaceShader {
     fn per_vertex_ok(&self, _positions: [Vec3; 3], _normals: [Vec3; 3]) -> bool {
         false
     }
+
+    /// `out[i] = shade(positions[i], normals[i], uvs[i])` for every `i`: what [`draw`] calls once
+    /// per draw with the visible pixels of its per-pixel triangles. The default shades one point
+    /// at a time; a shader with a batch path (the crate's [`PhongShader`](crate::PhongShader))
+    /// overrides it. The four slices have the same length.
+    fn shade_many(&self, positions: &[Vec3], normals: &[Vec3], uvs: &[Vec2], out: &mut [Vec3]) {
+        shade_each(self, positions, normals, uvs, out);
+    }
+}
+
+/// [`SurfaceShader::shade_many`] one point at a time.
+pub fn shade_each<S: SurfaceShader + ?Sized>(
+    shader: &S,
+    positions: &[Vec3],
+    normals: &[Vec3],
+    uvs: &[Vec2],
+    out: &mut [Vec3],
+) {
+    debug_assert!(
+        positions.len() == out.len() && normals.len() == out.len() && uvs.len() == out.len(),
+        "shade_many: slices of different lengths"
+    );
+    for (((o, p), n), t) in out.iter_mut().zip(positions).zip(normals).zip(uvs) {
+        *o = shader.shade(*p, *n, *t);
+    }
+}
+
+/// The per-pixel fragments of one draw that passed the depth test when they were drawn: the
+/// pixel, the triangle and the interpolated attributes. A fragment is still visible at the end of
+/// the draw when its pixel still shows its triangle.
+#[derive(Default)]
+struct Deferred {
+    fragments: Vec<Fragment>,
+}
+
+/// One per-pixel fragment: where it is, which triangle drew it, and what the shader gets.
+#[derive(Clone, Copy)]
+struct Fragment {
+    pixel: u32,
+    triangle: u32,
+    position: Vec3,
+    normal: Vec3,
+    uv: Vec2,
+}
+
+std::thread_local! {
+    /// The fragment list, kept from one draw to the next on each thread.
+    static SCRATCH: std::cell::Cell<Vec<Fragment>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
+/// Fragments shaded per [`SurfaceShader::shade_many`] call, gathered in stack arrays.
+const CHUNK: usize = 1024;
+
+impl Deferred {
+    /// Shades the fragments still visible (one per pixel: a triangle covers a pixel once, and a
+    /// later fragment at the same pixel replaced the triangle id), `CHUNK` at a time, and writes
+    /// their colours. Returns how many were shaded.
+    fn resolve<S: SurfaceShader + ?Sized>(&self, fb: &mut Framebuffer, shader: &S) -> usize {
+        let mut pixel = [0usize; CHUNK];
+        let mut position = [Vec3::ZERO; CHUNK];
+        let mut normal = [Vec3::ZERO; CHUNK];
+        let mut uv = [Vec2::ZERO; CHUNK];
+        let mut colour = [Vec3::ZERO; CHUNK];
+        let mut shaded = 0;
+        let mut live = self
+            .fragments
+            .iter()
+            .filter(|f| fb.triangle[f.pixel as usize] == f.triangle)
+            .peekable();
+        while live.peek().is_some() {
+            let mut k = 0;
+            for f in live.by_ref().take(CHUNK) {
+                pixel[k] = f.pixel as usize;
+                (position[k], normal[k], uv[k]) = (f.position, f.normal, f.uv);
+                k += 1;
+            }
+            shader.shade_many(&position[..k], &normal[..k], &uv[..k], &mut colour[..k]);
+            for (&i, &c) in pixel[..k].iter().zip(&colour[..k]) {
+                fb.color[i] = c;
+            }
+            shaded += k;
+        }
+        shaded
+    }
 }
 
 /// What one [`draw`] call did.
@@ -39,7 +126,9 @@ pub struct DrawStats {
     pub per_vertex: usize,
     /// Pixels written (after the depth test).
     pub pixels: usize,
-    /// Calls to [`SurfaceShader::shade`].
+    /// Points shaded: vertices of per-vertex triangles, and the pixels of per-pixel triangles
+    /// still visible at the end of the draw (each shaded once, through
+    /// [`SurfaceShader::shade_many`]).
     pub shader_calls: usize,
 }
 
@@ -91,6 +180,12 @@ pub fn draw<S: SurfaceShader>(
     let uv = |i: usize| mesh.uvs.get(i).copied().unwrap_or(Vec2::ZERO);
     // Per-vertex colours are shared by the triangles around a vertex.
     let mut vertex_colour: Vec<Option<Vec3>> = vec![None; world.len()];
+    // The fragment list of the previous draw on this thread, emptied: its memory is already
+    // mapped, where a new list of a frame's size would fault its pages in at every draw.
+    let mut deferred = Deferred {
+        fragments: SCRATCH.with(|s| s.take()),
+    };
+    deferred.fragments.clear();
 
     for (t_index, tri) in mesh.triangles.iter().enumerate() {
         let idx = tri.map(|i| i as usize);
@@ -117,7 +212,6 @@ pub fn draw<S: SurfaceShader>(
         } else {
             [Vec3::ZERO; 3]
         };
-        let uvs = idx.map(uv);
         let poly = clip_near([
             ClipVertex {
                 clip: clip[idx[0]],
@@ -132,24 +226,29 @@ pub fn draw<S: SurfaceShader>(
                 bary: Vec3::Z,
             },
         ]);
+        let id = t_index as u32 + 1;
+        let uvs = idx.map(uv);
         for k in 1..poly.len().saturating_sub(1) {
             let sub = [poly[0], poly[k], poly[k + 1]];
-            let before = stats.pixels;
-            raster_triangle(fb, &sub, t_index as u32 + 1, &mut stats, |b| {
+            raster_triangle(fb, &sub, id, &mut stats, |i, b| {
                 if per_vertex {
-                    colours[0] * b.x + colours[1] * b.y + colours[2] * b.z
+                    Some(colours[0] * b.x + colours[1] * b.y + colours[2] * b.z)
                 } else {
-                    let q = p[0] * b.x + p[1] * b.y + p[2] * b.z;
-                    let m = n[0] * b.x + n[1] * b.y + n[2] * b.z;
-                    let t = uvs[0] * b.x + uvs[1] * b.y + uvs[2] * b.z;
-                    shader.shade(q, m, t)
+                    deferred.fragments.push(Fragment {
+                        pixel: i as u32,
+                        triangle: id,
+                        position: p[0] * b.x + p[1] * b.y + p[2] * b.z,
+                        normal: n[0] * b.x + n[1] * b.y + n[2] * b.z,
+                        uv: uvs[0] * b.x + uvs[1] * b.y + uvs[2] * b.z,
+                    });
+                    None
                 }
             });
-            if !per_vertex {
-                stats.shader_calls += stats.pixels - before;
-            }
         }
     }
+    let shaded = deferred.resolve(fb, shader);
+    stats.shader_calls += shaded;
+    SCRATCH.with(|s| s.replace(deferred.fragments));
     stats
 }
 
@@ -174,14 +273,15 @@ fn clip_near(v: [ClipVertex; 3]) -> Vec<ClipVertex> {
 }
 
 /// Fills one clipped triangle: pixel centres inside all three edges, nearer than the stored
-/// depth. `colour` gets the perspective-correct barycentric coordinates in the original
-/// triangle.
+/// depth. `colour` gets the pixel's index and the perspective-correct barycentric coordinates in
+/// the original triangle, and returns the colour to store now, or `None` when the pixel is shaded
+/// later (deferred).
 fn raster_triangle(
     fb: &mut Framebuffer,
     v: &[ClipVertex; 3],
     id: u32,
     stats: &mut DrawStats,
-    mut colour: impl FnMut(Vec3) -> Vec3,
+    mut colour: impl FnMut(usize, Vec3) -> Option<Vec3>,
 ) {
     let (w, h) = (fb.width as f32, fb.height as f32);
     let screen = v.map(|c| {
@@ -230,7 +330,9 @@ fn raster_triangle(
             let bary = (v[0].bary * a + v[1].bary * b + v[2].bary * c) / s;
             fb.depth[i] = z;
             fb.triangle[i] = id;
-            fb.color[i] = colour(bary);
+            if let Some(c) = colour(i, bary) {
+                fb.color[i] = c;
+            }
             stats.pixels += 1;
         }
     }
