@@ -973,11 +973,11 @@ fn finish(f: Jet, r2: f32, s: f32) -> f32 {
 /// let material = Material::try_from_color(Vec3::ONE, 32.0)?;
 /// let p = [Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.1, 0.0, 1.0), Vec3::new(0.0, 0.1, 1.0)];
 /// // A flat triangle, a directional light and a distant viewer: N, L, V constant, so exact.
-/// let flat = phong::gouraud_error_bound(Phong::default(), &material, &scene, p, [Vec3::Z; 3]);
+/// let flat = phong::shading_rate::gouraud_error_bound(Phong::default(), &material, &scene, p, [Vec3::Z; 3]);
 /// assert!(flat < 1e-3);
 /// // The same triangle with normals spread by 45°, as on a very coarse sphere, under the highlight.
 /// let curved = [Vec3::Z, Vec3::new(1.0, 0.0, 1.0).normalize(), Vec3::new(0.0, 1.0, 1.0).normalize()];
-/// assert!(phong::gouraud_error_bound(Phong::default(), &material, &scene, p, curved) > 0.1);
+/// assert!(phong::shading_rate::gouraud_error_bound(Phong::default(), &material, &scene, p, curved) > 0.1);
 /// # Ok::<(), phong::PhongError>(())
 /// ```
 #[must_use]
@@ -1037,7 +1037,7 @@ where
 /// let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
 /// // Facing away from the light: nothing but (constant) ambient.
 /// let away = [-Vec3::Z; 3];
-/// assert!(phong::gouraud_within_tolerance(BlinnPhong::default(), &m, &scene, p, away, 2.0 / 255.0));
+/// assert!(phong::shading_rate::gouraud_within_tolerance(BlinnPhong::default(), &m, &scene, p, away, 2.0 / 255.0));
 /// # Ok::<(), phong::PhongError>(())
 /// ```
 #[must_use]
