@@ -374,7 +374,7 @@ fn pow_4096(c: &mut Criterion) {
         .measurement_time(Duration::from_millis(1500));
     for s in [32.0f32, 20.5] {
         let m = material(s);
-        for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+        for pow in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
             let id = format!("{}/{}", pow.name(), s);
             let (pm, bm) = (phong_model(pow), blinn_model(pow));
             g.bench_function(BenchmarkId::new("phong", &id), |b| {

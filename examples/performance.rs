@@ -771,7 +771,7 @@ fn main() {
         "`x^s` alone, max relative error against f64 where `x^s ≥ 2⁻²⁴` (`s` from 0.5 to 511.3):\n"
     );
     let _ = writeln!(md, "| strategy | max relative error |\n|---|---:|");
-    for pw in PowStrategy::ALL {
+    for &pw in PowStrategy::ALL {
         let _ = writeln!(md, "| {} | {:.2e} |", pw.name(), pow_error(pw));
     }
     let _ = writeln!(
@@ -811,7 +811,7 @@ fn main() {
                 au.max_abs,
                 au.mismatch
             );
-            for pw in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+            for pw in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
                 let acc = compare(&batch_out(level, kind, pw, s, &soa), &reference);
                 let speed = mpts(
                     "pow_4096",

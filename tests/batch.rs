@@ -234,7 +234,7 @@ fn every_level_agrees_with_scalar_on_random_input() {
         ambient: Vec3::splat(0.05),
         viewer: Viewer::At(Vec3::new(0.0, 0.0, 3.0)),
     };
-    for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+    for pow in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
         for s in [0.0f32, 0.5, 1.0, 20.5, 32.0, 128.0, 1500.0] {
             let m = Material::try_new(
                 rng.vec3_in(0.0, 1.0),
@@ -495,7 +495,7 @@ fn unsupported_levels_are_errors_and_detect_is_supported() {
         viewer: Viewer::Infinite(Vec3::Z),
     };
     let m = Material::try_from_color(Vec3::ONE, 1.0).unwrap();
-    for level in Level::ALL {
+    for &level in Level::ALL {
         let (mut r, mut g, mut b) = ([0.0f32; 3], [0.0f32; 3], [0.0f32; 3]);
         let z = [0.0f32; 3];
         let res = phong::shade_batch_with_level(

@@ -226,7 +226,8 @@ impl Rng {
     }
     fn pow(&mut self) -> PowStrategy {
         let all: Vec<PowStrategy> = PowStrategy::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .chain([PowStrategy::Auto])
             .collect();
         all[self.below(all.len() as u64) as usize]

@@ -40,7 +40,8 @@ fn unit_vec3() -> impl Strategy<Value = Vec3> {
 fn any_pow() -> impl Strategy<Value = PowStrategy> {
     prop::sample::select(
         PowStrategy::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .chain([PowStrategy::Auto])
             .collect::<Vec<_>>(),
     )
@@ -200,7 +201,7 @@ proptest! {
         for x0 in [tuned, uniform.max(f32::MIN_POSITIVE)] {
             for k in 0..64u32 {
                 let x = f32::from_bits(x0.to_bits() + k).min(1.0);
-                for p in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+                for p in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
                     let e = pow_err(p, x, s);
                     prop_assert!(
                         e <= p.max_relative_error() as f64,

@@ -48,7 +48,8 @@ fn triangle() -> impl Strategy<Value = ([Vec3; 3], [Vec3; 3])> {
 fn pow_strategy() -> impl Strategy<Value = PowStrategy> {
     prop::sample::select(
         PowStrategy::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .chain([PowStrategy::Auto])
             .collect::<Vec<_>>(),
     )
@@ -424,7 +425,7 @@ fn every_pow_strategy_is_covered_on_small_triangles() {
         let n = [0; 3].map(|_| (face + rng.vec3_in(-0.3, 0.3)).normalize_or(face));
         for s in [8.0f32, 16.0, 20.5, 32.0, 64.0] {
             let m = Material::try_from_color(Vec3::ONE, s).unwrap();
-            for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+            for pow in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
                 let model = Model::from(Phong {
                     pow,
                     ..Phong::default()
@@ -476,7 +477,7 @@ fn tiny_lobes_near_the_flush_and_underflow_thresholds_are_covered() {
             ];
             let n = [0; 3].map(|_| (n0 + rng.vec3_in(-1e-3, 1e-3)).normalize());
             let m = Material::try_from_color(Vec3::ONE, s).unwrap();
-            for pow in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+            for pow in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
                 let model = Model::from(Phong {
                     pow,
                     ..Phong::default()

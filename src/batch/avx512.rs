@@ -655,7 +655,7 @@ mod tests {
             std::eprintln!("AVX-512 not available: nothing to check");
             return;
         }
-        for p in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+        for p in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
             let (e, x, s) = worst_over_domain(p, |s, xs| {
                 let plan = p.plan(s);
                 // SAFETY: `Level::Avx512.is_supported()` checked AVX-512F/VL, AVX2 and FMA above.

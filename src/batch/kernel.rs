@@ -944,7 +944,7 @@ mod tests {
     fn the_portable_lobe_power_meets_each_strategys_bound() {
         // The kernels' pow differs from the scalar one only in flushing bases whose power would
         // fall below 2⁻¹⁰⁰, an absolute error under 2⁻¹⁰⁰, far below the bound's 2⁻²⁴ floor.
-        for p in PowStrategy::ALL.into_iter().chain([PowStrategy::Auto]) {
+        for p in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
             let (e, x, s) = worst_over_domain(p, |s, xs| {
                 let plan = p.plan(s);
                 pow_lanes(plan, flush_below(plan), *xs)

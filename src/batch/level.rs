@@ -43,8 +43,9 @@ pub enum Level {
 }
 
 impl Level {
-    /// Every level, lowest first.
-    pub const ALL: [Level; 4] = [Level::Portable, Level::Sse2, Level::Avx2, Level::Avx512];
+    /// Every level, lowest first. A slice, not an array: the enum is `#[non_exhaustive]`, and a
+    /// level added later (NEON) lengthens it without changing its type.
+    pub const ALL: &'static [Level] = &[Level::Portable, Level::Sse2, Level::Avx2, Level::Avx512];
 
     /// Whether this CPU (with `std`: detected at run time) or this build (without `std`: the
     /// target features enabled at compile time) can run the level.
@@ -63,7 +64,7 @@ impl Level {
     #[must_use]
     pub fn detect() -> Level {
         let mut best = Level::Portable;
-        for l in Level::ALL {
+        for &l in Level::ALL {
             if l.is_supported() {
                 best = l;
             }
@@ -73,7 +74,7 @@ impl Level {
 
     /// Every level this machine supports, lowest first (for tests and benchmarks).
     pub fn supported() -> impl Iterator<Item = Level> {
-        Level::ALL.into_iter().filter(|l| l.is_supported())
+        Level::ALL.iter().copied().filter(|l| l.is_supported())
     }
 
     /// A short name: `"portable"`, `"sse2"`, `"avx2"`, `"avx512"`.
