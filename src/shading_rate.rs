@@ -30,7 +30,7 @@
 //! `max(B(1/μ − 1), AB/(A+B))` from it. The derivation with every constant is in
 //! docs/derivations.md, section "Shading-rate bound".
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::light::{Light, LightSource};
 use crate::material::Material;
@@ -428,56 +428,11 @@ fn windowed(dist: Jet, radius: f32, d0: f32, d1: f32, g: Jet, lo: f32, hi: f32) 
     f
 }
 
-/// A small `f64` vector for the geometry (glam's `DVec3` needs a feature this crate does not use).
-#[derive(Clone, Copy, Debug)]
-struct D3([f64; 3]);
-
-impl D3 {
-    fn of(v: Vec3) -> D3 {
-        D3([v.x as f64, v.y as f64, v.z as f64])
-    }
-    fn dot(self, o: D3) -> f64 {
-        self.0[0] * o.0[0] + self.0[1] * o.0[1] + self.0[2] * o.0[2]
-    }
-    fn length_squared(self) -> f64 {
-        self.dot(self)
-    }
-    fn cross(self, o: D3) -> D3 {
-        let (a, b) = (self.0, o.0);
-        D3([
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ])
-    }
-}
-
-impl core::ops::Sub for D3 {
-    type Output = D3;
-    fn sub(self, o: D3) -> D3 {
-        D3([self.0[0] - o.0[0], self.0[1] - o.0[1], self.0[2] - o.0[2]])
-    }
-}
-
-impl core::ops::Add for D3 {
-    type Output = D3;
-    fn add(self, o: D3) -> D3 {
-        D3([self.0[0] + o.0[0], self.0[1] + o.0[1], self.0[2] + o.0[2]])
-    }
-}
-
-impl core::ops::Mul<f64> for D3 {
-    type Output = D3;
-    fn mul(self, k: f64) -> D3 {
-        D3([self.0[0] * k, self.0[1] * k, self.0[2] * k])
-    }
-}
-
 /// The distance from `p` to triangle `abc` (Ericson, *Real-Time Collision Detection*, 5.1.5).
 /// Degenerate triangles whose interior case divides by zero give 0 (a safe lower bound).
 fn distance_to_triangle(p: Vec3, [a, b, c]: [Vec3; 3]) -> f32 {
-    let (p, a, b, c) = (D3::of(p), D3::of(a), D3::of(b), D3::of(c));
-    let len = |v: D3| math::sqrt_f64(v.length_squared());
+    let (p, a, b, c) = (p.as_dvec3(), a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
+    let len = |v: DVec3| math::sqrt_f64(v.length_squared());
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     let d = if d1 <= 0.0 && d2 <= 0.0 {
@@ -516,7 +471,7 @@ fn distance_to_triangle(p: Vec3, [a, b, c]: [Vec3; 3]) -> f32 {
 /// The squared radius of the smallest circle enclosing the triangle: the largest value of
 /// `Σ bᵢ‖Pᵢ − P(b)‖²` over the triangle.
 fn enclosing_radius_squared([a, b, c]: [Vec3; 3]) -> f32 {
-    let (a, b, c) = (D3::of(a), D3::of(b), D3::of(c));
+    let (a, b, c) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
     let (ab, bc, ca) = (
         (b - a).length_squared(),
         (c - b).length_squared(),
@@ -548,9 +503,12 @@ fn normal_jet(p: [Vec3; 3], n: [Vec3; 3]) -> Option<NormalJet> {
     if !(mu > 1e-4) {
         return None;
     }
-    let (p0, p1, p2) = (D3::of(p[0]), D3::of(p[1]), D3::of(p[2]));
+    let (p0, p1, p2) = (p[0].as_dvec3(), p[1].as_dvec3(), p[2].as_dvec3());
     let (e1, e2) = (p1 - p0, p2 - p0);
-    let (q1, q2) = (D3::of(n[1]) - D3::of(n[0]), D3::of(n[2]) - D3::of(n[0]));
+    let (q1, q2) = (
+        n[1].as_dvec3() - n[0].as_dvec3(),
+        n[2].as_dvec3() - n[0].as_dvec3(),
+    );
     let (g11, g12, g22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
     let det = g11 * g22 - g12 * g12;
     if !(det > 1e-30 * g11 * g22) || !det.is_finite() {
@@ -560,7 +518,7 @@ fn normal_jet(p: [Vec3; 3], n: [Vec3; 3]) -> Option<NormalJet> {
     let t1 = e1 * (1.0 / math::sqrt_f64(g11));
     let t2 = e2 - t1 * e2.dot(t1);
     let t2 = t2 * (1.0 / math::sqrt_f64(t2.length_squared()));
-    let jt = |t: D3| {
+    let jt = |t: DVec3| {
         let (r1, r2) = (e1.dot(t), e2.dot(t));
         let x1 = (g22 * r1 - g12 * r2) / det;
         let x2 = (g11 * r2 - g12 * r1) / det;
@@ -576,7 +534,7 @@ fn normal_jet(p: [Vec3; 3], n: [Vec3; 3]) -> Option<NormalJet> {
     let sigma = n
         .iter()
         .map(|ni| {
-            let ni = D3::of(*ni);
+            let ni = ni.as_dvec3();
             math::sqrt_f64(ni.dot(j1) * ni.dot(j1) + ni.dot(j2) * ni.dot(j2))
         })
         .fold(0.0f64, f64::max)
