@@ -615,4 +615,9 @@ fn phong_error_messages_are_exact() {
     // NaN, the other non-finite value, prints as NaN.
     let nan = LightColors::try_new(Vec3::new(f32::NAN, 0.0, 0.0), v, v).unwrap_err();
     assert_eq!(nan.to_string(), "light.ambient.x must be finite, got NaN");
+    // The batch API's one error names the level it cannot run.
+    assert_eq!(
+        phong::UnsupportedLevel(phong::Level::Avx512).to_string(),
+        "batch level avx512 is not supported on this CPU or build"
+    );
 }
