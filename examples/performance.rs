@@ -769,8 +769,8 @@ fn main() {
          On aarch64 (Apple silicon, Graviton, Raspberry Pi) the batch path runs the `Portable` \
          level: the portable kernel, which LLVM vectorises for NEON (part of the aarch64 \
          baseline); there is no NEON-specific level yet. CI cross-compiles the crate's whole test \
-         suite for `aarch64-unknown-linux-gnu` and runs it under qemu, so every level test and \
-         every batch-vs-scalar comparison also runs there. Nothing here measures aarch64 speed: \
+         suite for `aarch64-unknown-linux-gnu` and runs it under qemu, so the batch-vs-scalar \
+         comparisons run there at the `Portable` level. Nothing here measures aarch64 speed: \
          qemu's timings say nothing about a real core, and no instruction counts were taken.\n"
     );
 
