@@ -298,7 +298,7 @@ impl Attenuation {
         }
     }
 
-    /// The Unreal windowed form with radius `r`, without checks.
+    /// The Unreal windowed form `saturate(1 − (d/r)⁴)² / (d² + 1)` with radius `r`, without checks.
     ///
     /// **Domain:** `r` in `[f32::MIN_POSITIVE, f32::MAX]`; debug builds assert it. Release builds
     /// clamp `r` into that range, with NaN read as the lower end (a light whose window closes at
@@ -322,7 +322,8 @@ impl Attenuation {
         }
     }
 
-    /// The Frostbite windowed form with radius `r` and the default `ε`, without checks.
+    /// The Frostbite windowed form `saturate(1 − (d/r)⁴)² / max(d², ε²)` with radius `r` and the
+    /// default `ε` ([`Self::DEFAULT_MIN_DISTANCE`]), without checks.
     ///
     /// **Domain and release behaviour:** as [`unreal`](Self::unreal). Use
     /// [`try_frostbite`](Self::try_frostbite) to reject bad radii instead.
