@@ -6,9 +6,9 @@
 //! shade(model, material, scene, (px[i], py[i], pz[i]), (nx[i], ny[i], nz[i])).total()
 //! ```
 //!
-//! 16 points at a time, with the instruction set chosen at run time (with `std`: AVX-512, AVX2 +
-//! FMA or SSE2 through `is_x86_feature_detected!`) or at compile time (without `std`: the build's
-//! target features). [`shade_batch_with_level`] forces a [`Level`], for tests and measurements.
+//! 16 points at a time, with the instruction set chosen at run time (with `std` on x86_64:
+//! AVX-512, AVX2 + FMA or SSE2 through `is_x86_feature_detected!`), or at compile time (NEON on
+//! aarch64; without `std`, the build's target features). [`shade_batch_with_level`] forces a [`Level`], for tests and measurements.
 //!
 //! [`shade_gbuffer`] is the deferred renderer's form: a [`GBuffer`] with, optionally, a per-point
 //! surface ([`SoaSurface`]: what a [`Surface`](crate::Surface) holds, from texture maps) and a
@@ -166,6 +166,8 @@ mod dispatch;
 mod gbuffer;
 mod kernel;
 mod level;
+#[cfg(target_arch = "aarch64")]
+mod neon;
 mod prepare;
 mod soa;
 #[cfg(target_arch = "x86_64")]

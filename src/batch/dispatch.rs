@@ -1,4 +1,4 @@
-//! The library's only `unsafe` code (four `unsafe` blocks around six kernel calls; the AVX-512
+//! The library's only `unsafe` code (five `unsafe` blocks around seven kernel calls; the AVX-512
 //! kernel's tests have their own):
 //! calling a `#[target_feature]` kernel after checking the CPU.
 
@@ -60,6 +60,12 @@ pub(super) fn run_level<M: BatchModel, L: BatchLight>(
             }
             _ => {}
         }
+    }
+    #[cfg(target_arch = "aarch64")]
+    if level == Level::Neon && level.is_supported() {
+        // SAFETY: `is_supported` checked that the build enables NEON (every aarch64 target
+        // does), the one feature `neon::neon` enables.
+        return unsafe { super::neon::neon(k, pos, nor, (!plain).then_some(inputs), out) };
     }
     let _ = level;
     portable(k, pos, nor, (!plain).then_some(inputs), out)

@@ -4,9 +4,9 @@ use core::fmt;
 
 /// An instruction-set level of the batch kernel.
 ///
-/// The levels run two kernel sources. `Portable`, `Sse2` and `Avx2` run one portable kernel
-/// (plain Rust over 16-lane arrays), compiled once per level with that level's target features
-/// for LLVM to vectorise, and passed that level's inverse square root. `Avx512` runs a second
+/// The levels run two kernel sources. `Portable`, `Neon`, `Sse2` and `Avx2` run one portable
+/// kernel (plain Rust over 16-lane arrays), compiled once per level with that level's target
+/// features for LLVM to vectorise, and passed that level's inverse square root. `Avx512` runs a second
 /// kernel for calls with one material and no shadows ([`shade_batch`](crate::shade_batch) and
 /// the 8-bit and array-of-structs entry points): the same equations written with AVX-512
 /// intrinsics, fused multiply-adds throughout and its `log2`/`exp2` polynomials by Estrin's
@@ -19,6 +19,7 @@ use core::fmt;
 /// | level | kernel | vectors | inverse norm | its relative error |
 /// |---|---|---|---|---|
 /// | `Portable` | portable, the build's target features | whatever the build targets (4 × f32, SSE2, in a default x86_64 build) | `1 / sqrt(x)` | ≤ 1 ulp + 0.5 ulp |
+/// | `Neon` (aarch64) | portable, NEON | 4 × f32 | `frsqrte` + two Newton steps (`frsqrts`) | ≈ 2e-7 |
 /// | `Sse2` (x86_64) | portable, SSE2 | 4 × f32 | `rsqrtps` + one Newton step | ≤ 1.5·(1.5·2⁻¹²)² + rounding ≈ 3e-7 |
 /// | `Avx2` (AVX2 + FMA) | portable, AVX2 + FMA | 8 × f32 | `vrsqrtps` + one Newton step (fused) | ≈ 3e-7, as `Sse2` |
 /// | `Avx512` (AVX-512F/VL + AVX2 + FMA) | intrinsics (G-buffer calls: portable, AVX-512) | 16 × f32 | `vrsqrt14ps` + one Newton step | ≤ 1.5·2⁻²⁸ + rounding ≈ 1.5e-7 |
@@ -40,12 +41,21 @@ pub enum Level {
     Avx2,
     /// AVX-512 F and VL, with AVX2 and FMA.
     Avx512,
+    /// aarch64's NEON (every aarch64 CPU): the portable kernel with NEON's inverse square root.
+    Neon,
 }
 
 impl Level {
-    /// Every level, lowest first. A slice, not an array: the enum is `#[non_exhaustive]`, and a
-    /// level added later (NEON) lengthens it without changing its type.
-    pub const ALL: &'static [Level] = &[Level::Portable, Level::Sse2, Level::Avx2, Level::Avx512];
+    /// Every level, lowest first within each architecture (`Neon` is aarch64's, the others after
+    /// it x86_64's). A slice, not an array: the enum is `#[non_exhaustive]`, and a level added
+    /// later lengthens it without changing its type.
+    pub const ALL: &'static [Level] = &[
+        Level::Portable,
+        Level::Neon,
+        Level::Sse2,
+        Level::Avx2,
+        Level::Avx512,
+    ];
 
     /// Whether this CPU (with `std`: detected at run time) or this build (without `std`: the
     /// target features enabled at compile time) can run the level.
@@ -56,6 +66,7 @@ impl Level {
             Level::Sse2 => cfg!(target_arch = "x86_64"),
             Level::Avx2 => has_avx2(),
             Level::Avx512 => has_avx512(),
+            Level::Neon => cfg!(all(target_arch = "aarch64", target_feature = "neon")),
         }
     }
 
@@ -77,7 +88,7 @@ impl Level {
         Level::ALL.iter().copied().filter(|l| l.is_supported())
     }
 
-    /// A short name: `"portable"`, `"sse2"`, `"avx2"`, `"avx512"`.
+    /// A short name: `"portable"`, `"neon"`, `"sse2"`, `"avx2"`, `"avx512"`.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -85,6 +96,7 @@ impl Level {
             Level::Sse2 => "sse2",
             Level::Avx2 => "avx2",
             Level::Avx512 => "avx512",
+            Level::Neon => "neon",
         }
     }
 }
