@@ -14,7 +14,8 @@
 //! surface ([`SoaSurface`]: what a [`Surface`](crate::Surface) holds, from texture maps) and a
 //! visibility per light and point (shadow maps), which scales the light's diffuse and specular
 //! parts. It computes [`Shader::shade_surface`](crate::Shader::shade_surface) per point in the
-//! same kernel, each lane with its own shininess.
+//! same kernel, each lane with its own shininess. A coverage mask
+//! ([`GBuffer::with_coverage`]) leaves the background's pixels unread and unwritten.
 //!
 //! ## What runs in the vector kernel
 //!
@@ -175,7 +176,7 @@ mod x86;
 
 pub use gbuffer::{
     GBuffer, SoaSurface, shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level,
-    shade_gbuffer_with_level,
+    shade_gbuffer_with_level, shade_gbuffer_xrgb8, shade_gbuffer_xrgb8_with_level,
 };
 pub use level::{Level, UnsupportedLevel};
 pub use prepare::{BatchLight, BatchModel};
@@ -380,7 +381,7 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
         normals,
         &kernel::PointInputs::default(),
         out,
-        |[r, g, b]| u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b),
+        xrgb,
     )
 }
 
@@ -388,6 +389,12 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
 #[inline(always)]
 fn rgba([r, g, b]: [u8; 3]) -> [u8; 4] {
     [r, g, b, 255]
+}
+
+/// A `0x00RRGGBB` pixel (what minifb and softbuffer take).
+#[inline(always)]
+fn xrgb([r, g, b]: [u8; 3]) -> u32 {
+    u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b)
 }
 
 /// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: the same pixels as
@@ -561,6 +568,21 @@ fn chunked<M: BatchModel, L: BatchLight, T>(
     out: &mut [T],
     pack: impl Fn([u8; 3]) -> T,
 ) -> usize {
+    chunked_covered(shading, positions, normals, inputs, None, out, pack)
+}
+
+/// [`chunked`] that, given a `coverage` mask, shades and writes only the covered points (each
+/// run of them in one kernel call) and leaves the rest of `out` untouched.
+#[inline(always)]
+fn chunked_covered<M: BatchModel, L: BatchLight, T>(
+    shading: &Shading<'_, '_, M, L>,
+    positions: SoaVec3<'_>,
+    normals: SoaVec3<'_>,
+    inputs: &kernel::PointInputs<'_>,
+    coverage: Option<&[bool]>,
+    out: &mut [T],
+    pack: impl Fn([u8; 3]) -> T,
+) -> usize {
     debug_assert!(
         same_lengths(positions, normals, out.len()),
         "shade_batch_*8: the six input slices and the output must have the same length"
@@ -581,12 +603,45 @@ fn chunked<M: BatchModel, L: BatchLight, T>(
         );
         let len = out.len();
         let (r, g, b) = (&mut r[..len], &mut g[..len], &mut b[..len]);
-        shading.shade_inputs(pos, nor, &inputs.from(k * CHUNK), SoaRgb::new(r, g, b));
-        for (o, ((&r, &g), &b)) in out.iter_mut().zip(r.iter().zip(g.iter()).zip(b.iter())) {
-            *o = pack(crate::linear_to_srgb8(Vec3::new(r, g, b)));
+        let Some(coverage) = coverage else {
+            shading.shade_inputs(pos, nor, &inputs.from(k * CHUNK), SoaRgb::new(r, g, b));
+            for (o, ((&r, &g), &b)) in out.iter_mut().zip(r.iter().zip(g.iter()).zip(b.iter())) {
+                *o = pack(crate::linear_to_srgb8(Vec3::new(r, g, b)));
+            }
+            continue;
+        };
+        let covered = &coverage[k * CHUNK..k * CHUNK + len];
+        for run in covered_runs(covered) {
+            shading.shade_inputs(
+                pos.range(run.clone()),
+                nor.range(run.clone()),
+                &inputs.from(k * CHUNK + run.start),
+                SoaRgb::new(
+                    &mut r[run.clone()],
+                    &mut g[run.clone()],
+                    &mut b[run.clone()],
+                ),
+            );
+            for j in run {
+                out[j] = pack(crate::linear_to_srgb8(Vec3::new(r[j], g[j], b[j])));
+            }
         }
     }
     n
+}
+
+/// The maximal runs of `true` in `coverage`, as index ranges, in order.
+fn covered_runs(coverage: &[bool]) -> impl Iterator<Item = core::ops::Range<usize>> + '_ {
+    let mut i = 0;
+    core::iter::from_fn(move || {
+        let start = i + coverage[i..].iter().position(|&c| c)?;
+        let end = coverage[start..]
+            .iter()
+            .position(|&c| !c)
+            .map_or(coverage.len(), |e| start + e);
+        i = end;
+        Some(start..end)
+    })
 }
 
 fn run<M: BatchModel, L: BatchLight>(

@@ -391,3 +391,105 @@ fn a_plain_gbuffer_is_shade_batch() {
         assert_eq!(n, 0, "two lights need two planes of visibility");
     }
 }
+
+/// A coverage mask: the covered points get exactly the unmasked call's colours (the kernel's
+/// lanes are independent, and each run of covered points is one call of the same kernel), and
+/// every other output keeps its previous value, in the `f32`, RGBA and `0x00RRGGBB` outputs, at
+/// every level. The uncovered points' inputs are NaN: the documented "left unread" (a NaN read
+/// would trip the debug assertions or change a covered run's fall-back point by point).
+#[test]
+fn coverage_shades_the_covered_points_and_leaves_the_rest() {
+    let mut rng = Rng::new(0xc0fe);
+    let lamps = lamps(&mut rng, 2);
+    let eye = Vec3::new(0.5, 1.0, 4.0);
+    let len = 2100; // past two 1024-point chunks of the 8-bit outputs
+    let g = points(&mut rng, len, &lamps, eye);
+    let lights: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::splat(0.02),
+        viewer: Viewer::At(eye),
+    };
+    let base = Material::try_from_color(Vec3::ONE, 32.0).unwrap();
+    let model: Model = BlinnPhong::default().into();
+    // Spans of 1 to 40 points, covered or not, as scanlines cut a frame; one run crosses the
+    // chunk boundary at 1024 and the last run ends at the last point.
+    let mut coverage = Vec::with_capacity(len);
+    let mut covered = true;
+    while coverage.len() < len {
+        let span = 1 + (rng.unit_f32() * 40.0) as usize;
+        coverage.extend(core::iter::repeat_n(
+            covered,
+            span.min(len - coverage.len()),
+        ));
+        covered = !covered;
+    }
+    coverage[1010..1040].fill(true);
+    coverage[len - 3..].fill(true);
+    assert!(coverage.contains(&false));
+
+    let poison = |v: &[f32]| -> Vec<f32> {
+        v.iter()
+            .enumerate()
+            .map(|(i, &x)| if coverage[i % len] { x } else { f32::NAN })
+            .collect()
+    };
+    let soa = |v: &[Vec3]| {
+        let [x, y, z] = split(v);
+        [poison(&x), poison(&y), poison(&z)]
+    };
+    let (p, n, ka, kd, ks) = (soa(&g.p), soa(&g.n), soa(&g.ka), soa(&g.kd), soa(&g.ks));
+    let (s, vis) = (poison(&g.s), poison(&g.vis));
+    let buffer = GBuffer::new(
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&n[0], &n[1], &n[2]),
+    )
+    .with_surface(SoaSurface {
+        ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
+        diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
+        specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
+        shininess: &s,
+    })
+    .with_visibility(&vis)
+    .with_coverage(&coverage);
+    {
+        for level in Level::supported() {
+            let want = run(level, &model, &base, &scene, &g, true, true);
+            let (mut r, mut gr, mut b) = (vec![-1.0; len], vec![-2.0; len], vec![-3.0; len]);
+            let shaded = phong::shade_gbuffer_with_level(
+                level,
+                &model,
+                &base,
+                &scene,
+                &buffer,
+                SoaRgb::new(&mut r, &mut gr, &mut b),
+            )
+            .unwrap();
+            let mut rgba = vec![[1, 2, 3, 4]; len];
+            let mut xrgb = vec![0xdead_beef; len];
+            let shaded8 = phong::shade_gbuffer_rgba8_with_level(
+                level, &model, &base, &scene, &buffer, &mut rgba,
+            )
+            .unwrap();
+            let shaded32 = phong::shade_gbuffer_xrgb8_with_level(
+                level, &model, &base, &scene, &buffer, &mut xrgb,
+            )
+            .unwrap();
+            assert_eq!((shaded, shaded8, shaded32), (len, len, len), "{level}");
+            for i in 0..len {
+                let got = Vec3::new(r[i], gr[i], b[i]);
+                if coverage[i] {
+                    assert_eq!(got, want[i], "{level}: covered point {i}");
+                    let [cr, cg, cb] = phong::linear_to_srgb8(want[i]);
+                    assert_eq!(rgba[i], [cr, cg, cb, 255], "{level}: covered pixel {i}");
+                    let x = u32::from(cr) << 16 | u32::from(cg) << 8 | u32::from(cb);
+                    assert_eq!(xrgb[i], x, "{level}: covered pixel {i}");
+                } else {
+                    assert_eq!(got, Vec3::new(-1.0, -2.0, -3.0), "{level}: background {i}");
+                    assert_eq!(rgba[i], [1, 2, 3, 4], "{level}: background pixel {i}");
+                    assert_eq!(xrgb[i], 0xdead_beef, "{level}: background pixel {i}");
+                }
+            }
+        }
+    }
+}

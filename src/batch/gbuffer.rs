@@ -4,7 +4,7 @@ use super::kernel::PointInputs;
 use super::level::{Level, UnsupportedLevel};
 use super::prepare::{BatchLight, BatchModel};
 use super::soa::{SoaRgb, SoaVec3};
-use super::{Shading, chunked, rgba};
+use super::{Shading, chunked_covered, covered_runs, rgba, xrgb};
 use crate::material::Material;
 use crate::shade::Scene;
 
@@ -55,7 +55,13 @@ impl<'a> SoaSurface<'a> {
 }
 
 /// What a deferred renderer has per pixel: positions and normals, and optionally a per-point
-/// surface and per-light visibilities (shadow factors).
+/// surface, per-light visibilities (shadow factors) and a coverage mask.
+///
+/// **Coverage:** with [`with_coverage`](Self::with_coverage), only the points whose mask value is
+/// `true` are read and shaded; at the others (the background) every input is left unread, so it
+/// may hold anything, and the output is left untouched (8-bit outputs included: their alpha too).
+/// Each run of covered points is shaded by one kernel call, so a frame's spans cost what a
+/// G-buffer of their length would.
 ///
 /// **Visibility layout:** light-major, `visibility[j * stride + i]` for light `j` at point `i`,
 /// where `stride = positions.x.len()`: one plane of the G-buffer per light, in the order of
@@ -79,6 +85,8 @@ pub struct GBuffer<'a> {
     pub surface: Option<SoaSurface<'a>>,
     /// Per-light, per-point visibility (see the type's docs); `None`: every light unshadowed.
     pub visibility: Option<&'a [f32]>,
+    /// Which points to shade (see the type's docs); `None`: every point.
+    pub coverage: Option<&'a [bool]>,
 }
 
 impl<'a> GBuffer<'a> {
@@ -90,6 +98,7 @@ impl<'a> GBuffer<'a> {
             normals,
             surface: None,
             visibility: None,
+            coverage: None,
         }
     }
 
@@ -111,11 +120,39 @@ impl<'a> GBuffer<'a> {
         }
     }
 
-    /// The number of points: the shortest of the position, normal and surface slices.
+    /// The same G-buffer shading only the points where `coverage` is `true` (see the type's
+    /// docs).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, GBuffer, LightColors, Material, Phong, Scene, SoaRgb, SoaVec3, Viewer};
+    ///
+    /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+    /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+    /// let material = Material::try_from_color(Vec3::ONE, 32.0)?;
+    /// // The middle pixel is background: its inputs are never read, its output never written.
+    /// let (zero, nz) = ([0.0; 3], [1.0, f32::NAN, 1.0]);
+    /// let g = GBuffer::new(SoaVec3::new(&zero, &zero, &zero), SoaVec3::new(&zero, &zero, &nz))
+    ///     .with_coverage(&[true, false, true]);
+    /// let mut frame = [[9u8; 4]; 3];
+    /// assert_eq!(phong::shade_gbuffer_rgba8(&Phong::default(), &material, &scene, &g, &mut frame), 3);
+    /// assert_eq!(frame, [[255, 255, 255, 255], [9; 4], [255, 255, 255, 255]]);
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    pub fn with_coverage(self, coverage: &'a [bool]) -> Self {
+        GBuffer {
+            coverage: Some(coverage),
+            ..self
+        }
+    }
+
+    /// The number of points: the shortest of the position, normal, surface and coverage slices.
     #[must_use]
     pub fn len(&self) -> usize {
         let n = self.positions.len().min(self.normals.len());
-        self.surface.map_or(n, |s| n.min(s.len()))
+        let n = self.surface.map_or(n, |s| n.min(s.len()));
+        self.coverage.map_or(n, |c| n.min(c.len()))
     }
 
     /// Whether there are no points.
@@ -223,7 +260,8 @@ pub fn shade_gbuffer_with_level<M: BatchModel, L: BatchLight>(
 
 /// [`shade_gbuffer`] straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
 /// `[r, g, b] = linear_to_srgb8` of [`shade_gbuffer`]'s colour, in 1024-point chunks on the stack
-/// as [`shade_batch_rgba8`](crate::shade_batch_rgba8) writes them. Alpha is 255.
+/// as [`shade_batch_rgba8`](crate::shade_batch_rgba8) writes them. Alpha is 255 at every shaded
+/// point; with a coverage mask, uncovered pixels keep all four bytes.
 ///
 /// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with `out` in place of the
 /// three output slices; the levels are those of [`shade_gbuffer`]'s `f32` output, bit for bit.
@@ -234,7 +272,7 @@ pub fn shade_gbuffer_rgba8<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [[u8; 4]],
 ) -> usize {
-    rgba8(Level::detect(), model, material, scene, gbuffer, out)
+    encoded(Level::detect(), model, material, scene, gbuffer, out, rgba)
 }
 
 /// [`shade_gbuffer_rgba8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -250,7 +288,54 @@ pub fn shade_gbuffer_rgba8_with_level<M: BatchModel, L: BatchLight>(
     if !level.is_supported() {
         return Err(UnsupportedLevel(level));
     }
-    Ok(rgba8(level, model, material, scene, gbuffer, out))
+    Ok(encoded(level, model, material, scene, gbuffer, out, rgba))
+}
+
+/// [`shade_gbuffer`] straight into a `0x00RRGGBB` frame (what minifb and softbuffer take):
+/// `out[i]` holds `linear_to_srgb8` of [`shade_gbuffer`]'s colour, in 1024-point chunks on the
+/// stack as [`shade_batch_xrgb8`](crate::shade_batch_xrgb8) writes them; the top byte is 0.
+///
+/// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with `out` in place of the
+/// three output slices; the levels are those of [`shade_gbuffer`]'s `f32` output, bit for bit.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{DirectionalLight, GBuffer, LightColors, Material, Phong, Scene, SoaVec3, Viewer};
+///
+/// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+/// let material = Material::try_from_color(Vec3::new(1.0, 0.5, 0.0), 32.0)?;
+/// let (zero, one) = ([0.0; 1], [1.0; 1]);
+/// let g = GBuffer::new(SoaVec3::new(&zero, &zero, &zero), SoaVec3::new(&zero, &zero, &one));
+/// let mut frame = [0u32; 1];
+/// phong::shade_gbuffer_xrgb8(&Phong::default(), &material, &scene, &g, &mut frame);
+/// assert_eq!(frame[0], 0x00ff_bc00);
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub fn shade_gbuffer_xrgb8<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: &mut [u32],
+) -> usize {
+    encoded(Level::detect(), model, material, scene, gbuffer, out, xrgb)
+}
+
+/// [`shade_gbuffer_xrgb8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
+/// written) when this CPU or build cannot run it.
+pub fn shade_gbuffer_xrgb8_with_level<M: BatchModel, L: BatchLight>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: &mut [u32],
+) -> Result<usize, UnsupportedLevel> {
+    if !level.is_supported() {
+        return Err(UnsupportedLevel(level));
+    }
+    Ok(encoded(level, model, material, scene, gbuffer, out, xrgb))
 }
 
 fn run<M: BatchModel, L: BatchLight>(
@@ -269,29 +354,46 @@ fn run<M: BatchModel, L: BatchLight>(
     let n = n.min(out.len());
     let shading = Shading::with_inputs(level, model, material, scene, &inputs);
     let (pos, nor) = gbuffer.prefix(n);
-    shading.shade_inputs(
-        pos,
-        nor,
-        &inputs,
-        SoaRgb::new(&mut out.r[..n], &mut out.g[..n], &mut out.b[..n]),
-    )
+    let Some(coverage) = gbuffer.coverage else {
+        return shading.shade_inputs(
+            pos,
+            nor,
+            &inputs,
+            SoaRgb::new(&mut out.r[..n], &mut out.g[..n], &mut out.b[..n]),
+        );
+    };
+    for run in covered_runs(&coverage[..n]) {
+        shading.shade_inputs(
+            pos.range(run.clone()),
+            nor.range(run.clone()),
+            &inputs.from(run.start),
+            SoaRgb::new(
+                &mut out.r[run.clone()],
+                &mut out.g[run.clone()],
+                &mut out.b[run],
+            ),
+        );
+    }
+    n
 }
 
-fn rgba8<M: BatchModel, L: BatchLight>(
+fn encoded<M: BatchModel, L: BatchLight, T>(
     level: Level,
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     gbuffer: &GBuffer<'_>,
-    out: &mut [[u8; 4]],
+    out: &mut [T],
+    pack: impl Fn([u8; 3]) -> T,
 ) -> usize {
     let (inputs, n) = gbuffer.inputs(scene.lights.len());
     debug_assert!(
         out.len() == n,
-        "shade_gbuffer_rgba8: the output must have the G-buffer's length"
+        "shade_gbuffer_*8: the output must have the G-buffer's length"
     );
     let n = n.min(out.len());
     let shading = Shading::with_inputs(level, model, material, scene, &inputs);
     let (pos, nor) = gbuffer.prefix(n);
-    chunked(&shading, pos, nor, &inputs, &mut out[..n], rgba)
+    let coverage = gbuffer.coverage.map(|c| &c[..n]);
+    chunked_covered(&shading, pos, nor, &inputs, coverage, &mut out[..n], pack)
 }

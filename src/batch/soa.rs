@@ -25,6 +25,15 @@ impl<'a> SoaVec3<'a> {
         SoaVec3 { x, y, z }
     }
 
+    /// Points `range` of the view (within every slice's length).
+    pub(crate) fn range(&self, range: core::ops::Range<usize>) -> Self {
+        SoaVec3::new(
+            &self.x[range.clone()],
+            &self.y[range.clone()],
+            &self.z[range],
+        )
+    }
+
     /// The length of the shortest slice.
     #[must_use]
     pub fn len(&self) -> usize {
