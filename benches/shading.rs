@@ -19,8 +19,9 @@
 //!   shininess (non-integer, uniform in [2, 128]) and shadow factor.
 //!
 //! Extra groups for docs/performance.md: `pow_4096` (every pow strategy, both models, s = 32 and
-//! 20.5), `levels_4096` (every dispatch level this CPU runs) and `parallel_1m` (one call against
-//! one part per core on scoped threads, the batch module's "Many cores" recipe).
+//! 20.5), `levels_4096` (every dispatch level this CPU runs), `parallel_1m` (one call against
+//! one part per core on scoped threads, the batch module's "Many cores" recipe) and
+//! `falloff_4096` (a spot light and an Unreal-falloff point light: the batch against `shade`).
 //!
 //! Before timing, each group asserts that `scalar`, `batch` and `batch_frac` agree with
 //! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
@@ -705,6 +706,71 @@ fn gbuffer_4096(c: &mut Criterion) {
     g.finish();
 }
 
+/// Spot lights and falloffs other than the polynomial one, which the batch kernel evaluates per
+/// lane by the scalar formulas (a spot cone with a fractional exponent: `powf` per lane): the
+/// batch against `shade` point by point, which is how a call with such a light was shaded before
+/// the kernel took them (N = 4096, Phong, s = 32).
+fn falloff_4096(c: &mut Criterion) {
+    let n = 4096;
+    let (p, nn) = points(n, 0x5eed);
+    let colors = LightColors::try_new(LA, LD, LS).unwrap();
+    let lights = [
+        phong::Light::from(
+            phong::SpotLight::try_with_cone(
+                LIGHT_POS,
+                -LIGHT_POS,
+                phong::SpotCone::degrees(60.0).with_exponent(4.5),
+                Attenuation::try_inverse_square(4.0).unwrap(),
+                colors,
+            )
+            .unwrap(),
+        ),
+        phong::Light::from(
+            PointLight::try_new(
+                Vec3::new(-1.0, 2.0, 1.0),
+                Attenuation::try_unreal(6.0).unwrap(),
+                colors,
+            )
+            .unwrap(),
+        ),
+    ];
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(VIEW_POS),
+    };
+    let m = material(32.0);
+    let model = Phong::default();
+    let mut soa = soa_of(&p, &nn);
+    let mut scalar = vec![Vec3::ZERO; n];
+    let shade_all = |out: &mut [Vec3]| {
+        for i in 0..n {
+            out[i] = phong::shade(&model, &m, &scene, p[i], nn[i]).total();
+        }
+    };
+    let level = Level::detect();
+    let batch = |soa: &mut Soa| {
+        let (pos, nor, out) = soa.split();
+        phong::shade_batch_with_level(level, &model, &m, &scene, pos, nor, out).unwrap();
+    };
+    shade_all(&mut scalar);
+    batch(&mut soa);
+    for (i, &want) in scalar.iter().enumerate() {
+        let tol = Vec3::splat(1e-4) + want.abs() * 1e-4;
+        assert!(
+            (soa_out(&soa, i) - want).abs().cmple(tol).all(),
+            "batch disagrees with shade at point {i}"
+        );
+    }
+    let mut g = c.benchmark_group("falloff_4096");
+    g.throughput(Throughput::Elements(n as u64))
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    g.bench_function("batch", |b| b.iter(|| batch(black_box(&mut soa))));
+    g.bench_function("shade", |b| b.iter(|| shade_all(black_box(&mut scalar))));
+    g.finish();
+}
+
 criterion_group!(
     benches,
     phong_4096,
@@ -717,6 +783,7 @@ criterion_group!(
     srgb8_4096,
     aos_4096,
     aos_1m,
-    gbuffer_4096
+    gbuffer_4096,
+    falloff_4096
 );
 criterion_main!(benches);

@@ -762,6 +762,22 @@ fn main() {
         fmt_opt(serial.zip(threaded).map(|(s, t)| t / s), 2)
     );
 
+    // ---- Spot lights and other falloffs.
+    let falloff_batch = mpts("falloff_4096", "batch", 4096, "new");
+    let falloff_shade = mpts("falloff_4096", "shade", 4096, "new");
+    let _ = writeln!(
+        md,
+        "## Spot lights and other falloffs (`falloff_4096`)\n\n\
+         A spot light (60°, exponent 4.5, inverse-square falloff) and a point light with Unreal's \
+         windowed falloff, Phong, s = 32, 4096 points: the batch kernel, which evaluates these \
+         lights' factors per lane by the scalar formulas, against `shade` point by point, which is \
+         how the batch shaded a call with such a light before (million points per second).\n\n\
+         | `batch` | `shade` | batch ÷ shade |\n|---:|---:|---:|\n| {} | {} | {} |\n",
+        fmt_opt(falloff_batch, 0),
+        fmt_opt(falloff_shade, 0),
+        fmt_opt(falloff_batch.zip(falloff_shade).map(|(b, s)| b / s), 1)
+    );
+
     // ---- Other architectures.
     let _ = writeln!(
         md,

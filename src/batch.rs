@@ -24,14 +24,16 @@
 //!   [`SpecularGate`](crate::SpecularGate), [`Normalization`](crate::Normalization) and
 //!   [`PowStrategy`](crate::PowStrategy) (`Exact` calls `powf` per lane and so does not vectorise;
 //!   `Auto` picks [`PowStrategy::cheapest_for_8bit`](crate::PowStrategy::cheapest_for_8bit));
-//! - lights: [`DirectionalLight`](crate::DirectionalLight) and
-//!   [`PointLight`](crate::PointLight) with [`Attenuation::None`](crate::Attenuation::None) or
-//!   [`Attenuation::Polynomial`](crate::Attenuation::Polynomial), any number, also through
-//!   [`Light`](crate::Light);
+//! - lights: every kind, any number, also through [`Light`](crate::Light).
+//!   [`DirectionalLight`](crate::DirectionalLight)s and [`PointLight`](crate::PointLight)s with
+//!   [`Attenuation::None`](crate::Attenuation::None) or
+//!   [`Attenuation::Polynomial`](crate::Attenuation::Polynomial) take the fastest path, with the
+//!   approximate inverse norms below. A [`SpotLight`](crate::SpotLight), or a point light with
+//!   another falloff (inverse-square, Unreal, Frostbite), gets its direction and distance per lane
+//!   by an exact square root and division and its factor by the scalar path's own formula (the
+//!   spot cone's `powf` lane by lane), so its factor is [`shade`](crate::shade)'s, bit for bit; a
+//!   call with one runs the portable kernel at every level (at `Avx512`, compiled for AVX-512);
 //! - both [`Viewer`](crate::Viewer)s.
-//!
-//! A scene with any other light (spot lights, other attenuation forms) is shaded point by point
-//! by [`shade`](crate::shade): the same answer at scalar speed.
 //!
 //! ## Saturation
 //!

@@ -18,7 +18,7 @@ use glam::{DVec3, Vec3};
 use phong::{
     Attenuation, BatchLight, BatchModel, BlinnPhong, DirectionalLight, Lambert, Level, Light,
     LightColors, Material, Model, Normalization, Phong, PointLight, PowStrategy, Scene, SoaRgb,
-    SoaVec3, SpecularGate, SpotLight, Viewer,
+    SoaVec3, SpecularGate, SpotCone, SpotLight, Viewer,
 };
 
 #[path = "support/rng.rs"]
@@ -445,38 +445,102 @@ fn every_light_kind_and_viewer() {
         viewer: Viewer::At(Vec3::new(0.0, 0.0, 5.0)),
     };
     check("12 lights", &blinn, &m, &scene, &b);
-    // A spot light and another attenuation form: the whole batch takes the scalar path.
-    lights.push(
-        SpotLight::try_new(
+    // Spot lights (no cone, a whole and a fractional exponent, exponent 0) and every other
+    // falloff, also under a spot's cone: all in the kernel now, each light's factor by the scalar
+    // formula, so the documented range holds as for the lights above.
+    let spot = |at: Vec3, axis: Vec3, cone: SpotCone, attenuation, rng: &mut Rng| -> Light {
+        SpotLight::try_with_cone(at, axis, cone, attenuation, colors(rng))
+            .unwrap()
+            .into()
+    };
+    let falloffs = [
+        Attenuation::try_inverse_square(3.0).unwrap(),
+        Attenuation::try_unreal(4.0).unwrap(),
+        Attenuation::try_frostbite(3.5).unwrap(),
+        Attenuation::try_polynomial(1.0, 0.2, 0.05).unwrap(),
+    ];
+    let mut kernel_lights: Vec<Light> = vec![
+        spot(
             Vec3::new(0.0, 5.0, 0.0),
             -Vec3::Y,
-            0.6,
-            2.0,
+            SpotCone::degrees(35.0).with_exponent(2.0),
             Attenuation::None,
-            colors(&mut rng),
-        )
-        .unwrap()
-        .into(),
-    );
-    lights.push(
-        PointLight::try_new(
-            Vec3::new(2.0, 2.0, 2.0),
-            Attenuation::try_inverse_square(3.0).unwrap(),
-            colors(&mut rng),
-        )
-        .unwrap()
-        .into(),
-    );
-    let scene = Scene {
-        lights: &lights,
-        ambient: Vec3::ZERO,
-        viewer: Viewer::At(Vec3::new(0.0, 0.0, 5.0)),
+            &mut rng,
+        ),
+        spot(
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::new(-0.3, -0.4, -1.0),
+            SpotCone::degrees(50.0).with_exponent(7.3),
+            falloffs[1],
+            &mut rng,
+        ),
+        spot(
+            Vec3::new(-2.0, 1.0, 1.0),
+            Vec3::X,
+            SpotCone::degrees(80.0),
+            falloffs[2],
+            &mut rng,
+        ),
+        spot(
+            Vec3::new(0.5, -3.0, 0.5),
+            Vec3::Y,
+            SpotCone::NONE,
+            falloffs[3],
+            &mut rng,
+        ),
+    ];
+    for (k, attenuation) in falloffs.into_iter().enumerate() {
+        kernel_lights.push(
+            PointLight::try_new(
+                Vec3::new(2.0 - k as f32, 2.0, 1.5 * k as f32 - 2.0),
+                attenuation,
+                colors(&mut rng),
+            )
+            .unwrap()
+            .into(),
+        );
+    }
+    let phong = Phong {
+        pow,
+        ..Phong::default()
     };
-    for level in Level::supported() {
-        let out = run(level, &blinn, &m, &scene, &b);
-        for (i, o) in out.iter().enumerate() {
-            let want = phong::shade(&blinn, &m, &scene, b.p[i], b.n[i]).total();
-            assert_eq!(*o, want, "{level}: scalar fallback, point {i}");
+    for viewer in [
+        Viewer::At(Vec3::new(0.0, 0.0, 5.0)),
+        Viewer::Infinite(Vec3::new(0.2, 0.3, 1.0)),
+    ] {
+        let scene = Scene {
+            lights: &kernel_lights,
+            ambient: Vec3::splat(0.01),
+            viewer,
+        };
+        check(
+            &format!("spot and falloff lights, {viewer:?}"),
+            &blinn,
+            &m,
+            &scene,
+            &b,
+        );
+        check(
+            &format!("spot and falloff lights, {viewer:?}"),
+            &phong,
+            &m,
+            &scene,
+            &b,
+        );
+        // One of them at a time too, so no other light hides a wrong factor.
+        for (j, light) in kernel_lights.iter().enumerate() {
+            let one = [*light];
+            let scene = Scene {
+                lights: &one,
+                ..scene
+            };
+            check(
+                &format!("kernel light {j}, {viewer:?}"),
+                &phong,
+                &m,
+                &scene,
+                &b,
+            );
         }
     }
 }

@@ -69,7 +69,7 @@ fn the_batch_path_draws_the_point_by_point_picture() {
     )
     .unwrap();
     let kernel_lights = [Light::from(point), Light::from(sun)];
-    // A spot light sends the batch to its scalar fallback: the same picture either way.
+    // A spot light: the kernel evaluates its factor by the scalar formula, so the same picture.
     let with_spot = [Light::from(point), Light::from(spot)];
     let m = Material::try_from_color(Vec3::new(1.0, 0.5, 0.31), 24.5).unwrap();
     let mut compared = 0;

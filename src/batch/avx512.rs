@@ -238,7 +238,10 @@ fn light_v(l: PreparedLight) -> LightV {
             coefficients,
         } => (v3(position), v3(glam::Vec3::from_array(coefficients))),
         LaneLight::Directional(d) => (v3(d), v3(glam::Vec3::ZERO)),
-        LaneLight::AmbientOnly => (v3(glam::Vec3::ZERO), v3(glam::Vec3::ZERO)),
+        // Dispatch never runs this kernel with a falloff light (`Setup::portable_only`).
+        LaneLight::AmbientOnly | LaneLight::Falloff { .. } => {
+            (v3(glam::Vec3::ZERO), v3(glam::Vec3::ZERO))
+        }
     };
     LightV {
         lane: l.lane,
@@ -415,6 +418,12 @@ fn run<M: BatchModel, L: BatchLight, const P: u8, const POLY_DEG: u8, const FOLD
                             _mm512_add_ps(amb[1], la[1]),
                             _mm512_add_ps(amb[2], la[2]),
                         ];
+                        continue;
+                    }
+                    LaneLight::Falloff { .. } => {
+                        // Not run here (`Setup::portable_only`); were it, every lane would go to
+                        // the scalar path, which is exact.
+                        ok = 0;
                         continue;
                     }
                     LaneLight::Directional(_) => {

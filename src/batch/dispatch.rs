@@ -1,4 +1,4 @@
-//! The library's only `unsafe` code (five `unsafe` blocks around seven kernel calls; the AVX-512
+//! The library's only `unsafe` code (four `unsafe` blocks around eight kernel calls; the AVX-512
 //! kernel's tests have their own):
 //! calling a `#[target_feature]` kernel after checking the CPU.
 
@@ -32,11 +32,17 @@ pub(super) fn run_level<M: BatchModel, L: BatchLight>(
                 // SAFETY: `is_supported` checked AVX-512F, AVX-512VL, AVX2 and FMA (at run time
                 // with `std`, in the build's target features without), which is every feature
                 // `avx512::avx512` and `x86::avx512` enable. The intrinsics kernel has no
-                // per-point inputs: a G-buffer call runs the one source compiled for AVX-512.
-                if plain {
-                    return unsafe { avx512::avx512(k, pos, nor, out) };
-                }
-                return unsafe { x86::avx512::<M, L, true>(k, pos, nor, inputs, out) };
+                // per-point inputs and no falloff light other than polynomial ones: such calls
+                // run the one source compiled for AVX-512.
+                return unsafe {
+                    if plain && !k.portable_only {
+                        avx512::avx512(k, pos, nor, out)
+                    } else if plain {
+                        x86::avx512::<M, L, false>(k, pos, nor, inputs, out)
+                    } else {
+                        x86::avx512::<M, L, true>(k, pos, nor, inputs, out)
+                    }
+                };
             }
             Level::Avx2 if level.is_supported() => {
                 // SAFETY: `is_supported` checked AVX2 and FMA, the features `x86::avx2` enables.

@@ -27,7 +27,7 @@ use glam::Vec3;
 
 use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
 use super::soa::{SoaRgb, SoaVec3};
-use crate::attenuation::Attenuation;
+use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
 use crate::material::Material;
 use crate::math;
@@ -83,6 +83,9 @@ pub(crate) struct PreparedLight {
     pub(crate) ka: Vec3,
     pub(crate) kd: Vec3,
     pub(crate) ks: Vec3,
+    /// A [`LaneLight::Falloff`]'s attenuation as one formula (`Attenuation::factor`'s own
+    /// operations, bit for bit); unused by the other kinds.
+    pub(crate) flat: FlatAttenuation,
 }
 
 /// Lights prepared once per call (more are prepared per chunk).
@@ -105,8 +108,13 @@ pub(crate) fn prepare_light<L: BatchLight>(
         let c = |x: f32, y: f32| (f64::from(x) * f64::from(y) * f64::from(k)) as f32;
         Vec3::new(c(a.x, b.x), c(a.y, b.y), c(a.z, b.z))
     };
+    let lane = light.lane_light().unwrap_or(LaneLight::AmbientOnly);
     PreparedLight {
-        lane: light.lane_light().unwrap_or(LaneLight::AmbientOnly),
+        lane,
+        flat: match lane {
+            LaneLight::Falloff { attenuation, .. } => attenuation.flat(),
+            _ => Attenuation::None.flat(),
+        },
         la: colors.ambient(),
         ld,
         ls: colors.specular(),
@@ -124,6 +132,8 @@ fn factor_max(lane: &LaneLight) -> f64 {
             coefficients: [c, _, _],
             ..
         } => 1.0 / f64::from(c.max(Attenuation::MIN_DENOMINATOR)),
+        // Every form is largest at distance 0; a spot factor is at most 1.
+        LaneLight::Falloff { attenuation, .. } => f64::from(attenuation.factor(0.0)),
         _ => 1.0,
     }
 }
@@ -204,6 +214,9 @@ pub(crate) struct Setup<'a, M, L> {
     /// The first lights, prepared; all of them when `all_prepared`.
     pub(crate) prepared: [PreparedLight; PREPARED],
     pub(crate) all_prepared: bool,
+    /// Whether a light is a [`LaneLight::Falloff`], which only this portable kernel evaluates
+    /// (the `Avx512` level then runs it instead of the intrinsics kernel).
+    pub(crate) portable_only: bool,
 }
 
 impl<M, L: BatchLight> Setup<'_, M, L> {
@@ -237,6 +250,7 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
             ka: Vec3::ZERO,
             kd: Vec3::ZERO,
             ks: Vec3::ZERO,
+            flat: Attenuation::None.flat(),
         }; PREPARED];
         for (slot, light) in prepared.iter_mut().zip(scene.lights) {
             *slot = prepare_light(light, material, &lm);
@@ -244,9 +258,14 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
         let folded = cannot_overflow(scene, material, &lm);
         let ambient = crate::light::sanitize_colour(scene.ambient);
         let sat = Vec3::splat(math::MAX);
+        let portable_only = scene
+            .lights
+            .iter()
+            .any(|l| matches!(l.lane_light(), Some(LaneLight::Falloff { .. })));
         Setup {
             prepared,
             all_prepared: scene.lights.len() <= PREPARED,
+            portable_only,
             model,
             material,
             scene,
@@ -579,6 +598,43 @@ where
                     lanes!(|i| dz[i] * inv[i]),
                     att,
                 )
+            }
+            LaneLight::Falloff {
+                position: q, spot, ..
+            } => {
+                // `LightSource::sample`'s own operations: the direction and distance of
+                // `direction_and_distance` (an exact square root, then `v · (1/d)`), the factor
+                // of `Attenuation::factor` (as `FlatAttenuation`) times the spot factor.
+                let dx = lanes!(|i| q.x - px[i]);
+                let dy = lanes!(|i| q.y - py[i]);
+                let dz = lanes!(|i| q.z - pz[i]);
+                let ll = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+                bad = lanes!(|i| if ll[i] >= LO && ll[i] <= HI {
+                    bad[i]
+                } else {
+                    1.0
+                });
+                let d = lanes!(|i| math::sqrt(ll[i]));
+                let inv = lanes!(|i| 1.0 / d[i]);
+                let (lx, ly, lz) = (
+                    lanes!(|i| dx[i] * inv[i]),
+                    lanes!(|i| dy[i] * inv[i]),
+                    lanes!(|i| dz[i] * inv[i]),
+                );
+                let flat = light.flat;
+                let att = lanes!(|i| flat.factor(d[i]));
+                let att = match spot {
+                    Some(spot) => lanes!(|i| {
+                        let c = spot.spot_factor(Vec3::new(lx[i], ly[i], lz[i]));
+                        if c > 0.0 {
+                            (att[i] * c).min(math::MAX)
+                        } else {
+                            0.0
+                        }
+                    }),
+                    None => att,
+                };
+                (lx, ly, lz, att)
             }
         };
         let nl = lanes!(|i| ux[i] * lx[i] + uy[i] * ly[i] + uz[i] * lz[i]);

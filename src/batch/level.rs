@@ -6,13 +6,14 @@ use core::fmt;
 ///
 /// The levels run two kernel sources. `Portable`, `Neon`, `Sse2` and `Avx2` run one portable
 /// kernel (plain Rust over 16-lane arrays), compiled once per level with that level's target
-/// features for LLVM to vectorise, and passed that level's inverse square root. `Avx512` runs a second
-/// kernel for calls with one material and no shadows ([`shade_batch`](crate::shade_batch) and
-/// the 8-bit and array-of-structs entry points): the same equations written with AVX-512
-/// intrinsics, fused multiply-adds throughout and its `log2`/`exp2` polynomials by Estrin's
-/// scheme, so it rounds differently from the other three. G-buffer calls with a per-point surface
-/// or per-light visibility ([`shade_gbuffer`](crate::shade_gbuffer)) run the portable kernel at
-/// every level, at `Avx512` compiled for AVX-512 with `vrsqrt14ps`.
+/// features for LLVM to vectorise, and passed that level's inverse square root. `Avx512` runs a
+/// second kernel for calls with one material, no shadows and only directional and polynomial
+/// point lights ([`shade_batch`](crate::shade_batch) and the 8-bit and array-of-structs entry
+/// points): the same equations written with AVX-512 intrinsics, fused multiply-adds throughout
+/// and its `log2`/`exp2` polynomials by Estrin's scheme, so it rounds differently from the
+/// others. Other calls (G-buffer calls with a per-point surface or per-light visibility through
+/// [`shade_gbuffer`](crate::shade_gbuffer), and scenes with a spot light or another falloff)
+/// run the portable kernel at every level, at `Avx512` compiled for AVX-512 with `vrsqrt14ps`.
 /// They differ in the vector width and in how the three inverse norms `1/‖n‖`, `1/‖L‖`, `1/‖V‖`
 /// are computed:
 ///

@@ -59,6 +59,18 @@ pub enum LaneLight {
         /// `c`, `l`, `q`.
         coefficients: [f32; 3],
     },
+    /// A point light with any other falloff, or a spot light: its direction and distance by an
+    /// exact square root and division and its factor by `Attenuation::factor` and
+    /// `SpotLight::spot_factor`, per lane, so the kernel's factor is the scalar path's, bit for
+    /// bit.
+    Falloff {
+        /// Light position.
+        position: Vec3,
+        /// The falloff.
+        attenuation: Attenuation,
+        /// The cone of a spot light.
+        spot: Option<SpotLight>,
+    },
     /// A light that adds ambient only (a directional light built with a zero direction).
     AmbientOnly,
 }
@@ -80,12 +92,15 @@ pub trait BatchModel: ReflectionModel + sealed::Sealed {
     fn lane_model(&self, s: f32) -> LaneModel;
 }
 
-/// A light type the batch path accepts. Sealed; implemented by every light kind.
+/// A light type the batch path accepts. Sealed; implemented by every light kind, and every kind
+/// runs in the vector kernel.
 ///
 /// [`DirectionalLight`] and [`PointLight`] with [`Attenuation::None`] or
-/// [`Attenuation::Polynomial`] run in the vector kernel. A scene with any other light (a
-/// [`SpotLight`], or a point light with another attenuation form) is shaded point by point with
-/// [`shade`](crate::shade): the same result, at scalar speed.
+/// [`Attenuation::Polynomial`] run on the kernel's fastest path (at the `Avx512` level, the
+/// intrinsics kernel). A [`SpotLight`], or a point light with another falloff, gets its
+/// direction and distance per lane by an exact square root and division and its factor by the
+/// scalar path's own formula (the spot factor's `powf` lane by lane), and a call with one runs
+/// the portable kernel at every level.
 pub trait BatchLight: LightSource + sealed::Sealed {
     /// The light's kernel form, or `None` when the kernel does not handle it.
     #[doc(hidden)]
@@ -190,7 +205,13 @@ impl BatchLight for PointLight {
                 linear,
                 quadratic,
             } => [constant, linear, quadratic],
-            _ => return None,
+            attenuation => {
+                return Some(LaneLight::Falloff {
+                    position: self.position(),
+                    attenuation,
+                    spot: None,
+                });
+            }
         };
         Some(LaneLight::Point {
             position: self.position(),
@@ -201,7 +222,11 @@ impl BatchLight for PointLight {
 
 impl BatchLight for SpotLight {
     fn lane_light(&self) -> Option<LaneLight> {
-        None
+        Some(LaneLight::Falloff {
+            position: self.position(),
+            attenuation: self.attenuation(),
+            spot: Some(*self),
+        })
     }
 }
 
