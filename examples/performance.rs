@@ -671,7 +671,7 @@ fn main() {
          `linear_to_srgb8` finds each channel's level among the 255 level boundaries (a 16 KiB \
          table indexed by the value's exponent and top mantissa bits, then one \
          comparison); `quantize_u8(srgb_encode(x))` computes the same levels through `powf` \
-         (they differ only within a few ulps of a boundary: tests in src/srgb8.rs). Million \
+         (they differ only within a few ulps of a boundary: tests in src/colour/srgb8.rs). Million \
          colours per second, 4096 random colours:\n\n\
          | `linear_to_srgb8` | `srgb_encode` + `quantize_u8` | ratio |\n|---:|---:|---:|\n| {} | {} | {} |\n\n\
          A frame shaded straight into 8-bit RGBA (`shade_batch_rgba8`: 1024-point chunks on the \

@@ -96,40 +96,35 @@ compile_error!(
      no_std targets, the `libm` feature"
 );
 
-mod attenuation;
+// Layers, each using only the ones before it (and `error`, `math`, which every layer uses):
+// geometry (vectors, normals) → reflection (models, cosines, pow) → lights (falloffs; a spot cone
+// takes reflection's pow) → surfaces (materials) → shading (one point) → batch (many points).
+// `colour`, `gpu` and `shading_rate` sit beside them.
 pub mod batch;
-mod blinn_phong;
-mod color;
+mod colour;
 mod error;
-mod expansion;
-mod face_forward;
-mod gate;
+mod geometry;
 pub mod gpu;
-mod halfway;
-mod incidence;
-mod lambert;
-mod light;
-mod material;
+mod lights;
 mod math;
-mod model;
-mod normal_matrix;
-mod normalization;
-mod normalize;
-mod phong;
-mod pow;
-mod reflect;
-mod resolved_model;
+mod reflection;
 #[cfg(feature = "serde")]
 mod serde_validation;
-mod shade;
-mod shader;
+mod shading;
 pub mod shading_rate;
-mod srgb8;
-mod surface;
-mod terms;
-mod triangle;
-mod vertex_normals;
-mod visibility;
+mod surfaces;
+
+// The layers' modules by their own names, so `crate::pow`, `crate::light`, … name them.
+use colour::{color, srgb8};
+use geometry::{
+    expansion, face_forward, halfway, normal_matrix, normalize, reflect, triangle, vertex_normals,
+};
+use lights::{attenuation, light};
+use reflection::{
+    blinn_phong, gate, incidence, lambert, model, normalization, phong, pow, resolved_model,
+};
+use shading::{shade, shader, terms, visibility};
+use surfaces::{material, surface};
 
 pub use attenuation::Attenuation;
 pub use batch::{
