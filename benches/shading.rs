@@ -478,6 +478,43 @@ fn parallel_1m(c: &mut Criterion) {
             })
         })
     });
+    // 8-bit RGBA output moves 4 bytes per point instead of 12: serial and on threads.
+    let mut frame = vec![[0u8; 4]; n];
+    group.bench_function("serial_rgba8", |bch| {
+        bch.iter(|| {
+            phong::shade_batch_rgba8(
+                black_box(&model),
+                &m,
+                &scene,
+                SoaVec3::new(&px, &py, &pz),
+                SoaVec3::new(&nx, &ny, &nz),
+                &mut frame,
+            )
+        })
+    });
+    group.bench_function("threads_rgba8", |bch| {
+        bch.iter(|| {
+            let part = n.div_ceil(threads);
+            std::thread::scope(|s| {
+                for (k, out) in frame.chunks_mut(part).enumerate() {
+                    let (lo, hi) = (k * part, (k * part + part).min(n));
+                    let positions = SoaVec3::new(&px[lo..hi], &py[lo..hi], &pz[lo..hi]);
+                    let normals = SoaVec3::new(&nx[lo..hi], &ny[lo..hi], &nz[lo..hi]);
+                    let (model, m, scene) = (&model, &m, &scene);
+                    s.spawn(move || {
+                        phong::shade_batch_rgba8(
+                            black_box(model),
+                            m,
+                            scene,
+                            positions,
+                            normals,
+                            out,
+                        )
+                    });
+                }
+            })
+        })
+    });
     group.finish();
 }
 

@@ -749,17 +749,24 @@ fn main() {
     // ---- Many cores.
     let serial = mpts("parallel_1m", "serial", 1 << 20, "new");
     let threaded = mpts("parallel_1m", "threads", 1 << 20, "new");
+    let serial8 = mpts("parallel_1m", "serial_rgba8", 1 << 20, "new");
+    let threaded8 = mpts("parallel_1m", "threads_rgba8", 1 << 20, "new");
     let _ = writeln!(
         md,
         "## Many cores (`parallel_1m`)\n\n\
          The batch module's recipe: 2²⁰ points in plain `Vec`s, one `shade_batch` call against one \
-         part per core on scoped threads (bit-identical output: tests/batch_parallel.rs). Phong, \
-         s = 32, one point light, measured in a criterion run of its own; this machine has {} cores.\n\n\
-         | serial (Mpts/s) | threads (Mpts/s) | threads ÷ serial |\n|---:|---:|---:|\n| {} | {} | {} |\n",
+         part per core on scoped threads (bit-identical output: tests/batch_parallel.rs), into \
+         linear `f32` (12 bytes a point) and into 8-bit RGBA (`shade_batch_rgba8`, 4 bytes). Phong, \
+         s = 32, one point light; this machine has {} cores.\n\n\
+         | output | serial (Mpts/s) | threads (Mpts/s) | threads ÷ serial |\n|---|---:|---:|---:|\n\
+         | `f32` | {} | {} | {} |\n| RGBA8 | {} | {} | {} |\n",
         std::thread::available_parallelism().map_or(1, |t| t.get()),
         fmt_opt(serial, 0),
         fmt_opt(threaded, 0),
-        fmt_opt(serial.zip(threaded).map(|(s, t)| t / s), 2)
+        fmt_opt(serial.zip(threaded).map(|(s, t)| t / s), 2),
+        fmt_opt(serial8, 0),
+        fmt_opt(threaded8, 0),
+        fmt_opt(serial8.zip(threaded8).map(|(s, t)| t / s), 2)
     );
 
     // ---- Spot lights and other falloffs.
