@@ -21,7 +21,8 @@
 //! Extra groups for docs/performance.md: `pow_4096` (every pow strategy, both models, s = 32 and
 //! 20.5), `levels_4096` (every dispatch level this CPU runs), `parallel_1m` (one call against
 //! one part per core on scoped threads, the batch module's "Many cores" recipe) and
-//! `falloff_4096` (a spot light and an Unreal-falloff point light: the batch against `shade`).
+//! `falloff_4096` (a spot light and an Unreal-falloff point light: the batch against `shade`) and
+//! `tiled_64_lights` (64 lights over a G-buffer: every light against per-tile culling).
 //!
 //! Before timing, each group asserts that `scalar`, `batch` and `batch_frac` agree with
 //! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
@@ -808,6 +809,88 @@ fn falloff_4096(c: &mut Criterion) {
     g.finish();
 }
 
+/// 64 lights over a 256 × 128 G-buffer (a bumpy 128 × 64 floor, lights scattered 2 above it with
+/// LearnOpenGL's falloff 1/(1 + 0.7d + 1.8d²), which falls below 1e-3 at d ≈ 23): every light at
+/// every pixel (`shade_gbuffer`) against 16 × 16 tiles shaded with the lights whose factor
+/// reaches 1e-3 in the tile (`shade_gbuffer_tiled`).
+fn tiled_64_lights(c: &mut Criterion) {
+    let (width, height) = (256usize, 128usize);
+    let n = width * height;
+    let mut rng = bench_scene::Rng(0x7113);
+    let (mut p, mut nn) = ([vec![], vec![], vec![]], [vec![], vec![], vec![]]);
+    for y in 0..height {
+        for x in 0..width {
+            let (fx, fy) = (x as f32 * 0.5, y as f32 * 0.5);
+            let q = Vec3::new(fx, fy, 0.2 * (fx * 1.3).sin() * (fy * 0.7).cos());
+            let nq = Vec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 1.0).normalize();
+            for k in 0..3 {
+                p[k].push(q[k]);
+                nn[k].push(nq[k]);
+            }
+        }
+    }
+    let lights: Vec<PointLight> = (0..64)
+        .map(|_| {
+            PointLight::try_new(
+                Vec3::new(rng.range(0.0, 128.0), rng.range(0.0, 64.0), 2.0),
+                Attenuation::try_polynomial(1.0, 0.7, 1.8).unwrap(),
+                LightColors::try_new(Vec3::splat(0.01), Vec3::splat(0.5), Vec3::splat(0.5))
+                    .unwrap(),
+            )
+            .unwrap()
+        })
+        .collect();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(64.0, -30.0, 45.0)),
+    };
+    let m = material(32.0);
+    let model = Phong::default();
+    let g = phong::GBuffer::new(
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&nn[0], &nn[1], &nn[2]),
+    );
+    let culling = phong::TileCulling {
+        width,
+        tile: 16,
+        threshold: 1e-3,
+    };
+    let mut scratch = lights.clone();
+    let (mut r, mut gr, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut group = c.benchmark_group("tiled_64_lights");
+    group
+        .throughput(Throughput::Elements(n as u64))
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    group.bench_function("gbuffer", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer(
+                black_box(&model),
+                &m,
+                &scene,
+                &g,
+                SoaRgb::new(&mut r, &mut gr, &mut b),
+            )
+        })
+    });
+    group.bench_function("tiled", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer_tiled(
+                black_box(&model),
+                &m,
+                &scene,
+                &g,
+                culling,
+                &mut scratch,
+                SoaRgb::new(&mut r, &mut gr, &mut b),
+            )
+        })
+    });
+    group.finish();
+}
+
 criterion_group!(
     benches,
     phong_4096,
@@ -821,6 +904,7 @@ criterion_group!(
     aos_4096,
     aos_1m,
     gbuffer_4096,
-    falloff_4096
+    falloff_4096,
+    tiled_64_lights
 );
 criterion_main!(benches);

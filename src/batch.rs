@@ -15,7 +15,9 @@
 //! visibility per light and point (shadow maps), which scales the light's diffuse and specular
 //! parts. It computes [`Shader::shade_surface`](crate::Shader::shade_surface) per point in the
 //! same kernel, each lane with its own shininess. A coverage mask
-//! ([`GBuffer::with_coverage`]) leaves the background's pixels unread and unwritten.
+//! ([`GBuffer::with_coverage`]) leaves the background's pixels unread and unwritten. With many
+//! lights, [`shade_gbuffer_tiled`] shades each tile of the image with only the lights that reach
+//! it ([`TileCulling`]).
 //!
 //! ## What runs in the vector kernel
 //!
@@ -176,6 +178,7 @@ mod level;
 mod neon;
 mod prepare;
 mod soa;
+mod tiled;
 #[cfg(target_arch = "x86_64")]
 mod x86;
 
@@ -186,6 +189,7 @@ pub use gbuffer::{
 pub use level::{Level, UnsupportedLevel};
 pub use prepare::{BatchLight, BatchModel};
 pub use soa::{SoaRgb, SoaVec3};
+pub use tiled::{TileCulling, shade_gbuffer_tiled, shade_gbuffer_tiled_with_level};
 
 use glam::Vec3;
 

@@ -16,9 +16,10 @@ mod rng;
 
 use glam::Vec3;
 use phong::{
-    Attenuation, BlinnPhong, GBuffer, Lambert, Level, LightColors, Material, Model, Normalization,
-    Phong, PointLight, PowStrategy, Scene, Shader, SoaRgb, SoaSurface, SoaVec3, SpecularGate,
-    Surface, Viewer, VisibilityFn,
+    Attenuation, BlinnPhong, DirectionalLight, GBuffer, Lambert, Level, Light, LightColors,
+    LightSource, Material, Model, Normalization, Phong, PointLight, PowStrategy, Scene, Shader,
+    SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, TileCulling, Viewer,
+    VisibilityFn,
 };
 use rng::Rng;
 
@@ -491,5 +492,218 @@ fn coverage_shades_the_covered_points_and_leaves_the_rest() {
                 }
             }
         }
+    }
+}
+
+/// A 96 × 40 image of a bumpy floor under 64 lights (polynomial, inverse-square and Unreal
+/// falloffs, a spot light, a sun), with some background pixels.
+struct Frame {
+    width: usize,
+    p: [Vec<f32>; 3],
+    n: [Vec<f32>; 3],
+    coverage: Vec<bool>,
+    lights: Vec<Light>,
+}
+
+fn many_lights(seed: u64) -> Frame {
+    let mut rng = Rng::new(seed);
+    let (width, height) = (96, 40);
+    let mut pts = vec![];
+    let mut nor = vec![];
+    for y in 0..height {
+        for x in 0..width {
+            let (fx, fy) = (x as f32 * 0.25, y as f32 * 0.25);
+            pts.push(Vec3::new(fx, fy, 0.2 * (fx * 1.3).sin() * (fy * 0.7).cos()));
+            nor.push((Vec3::Z + rng.vec3_in(-0.3, 0.3)).normalize());
+        }
+    }
+    let coverage = (0..width * height)
+        .map(|i| (i % width) < 90 || i / width < 30)
+        .collect();
+    let colors = |rng: &mut Rng| {
+        LightColors::try_new(
+            Vec3::splat(0.02),
+            rng.vec3_in(0.3, 1.0),
+            Vec3::splat(rng.range_f32(0.2, 1.0)),
+        )
+        .unwrap()
+    };
+    let mut lights: Vec<Light> = (0..62)
+        .map(|k| {
+            let at = Vec3::new(rng.range_f32(0.0, 24.0), rng.range_f32(0.0, 10.0), 0.8);
+            let attenuation = match k % 3 {
+                0 => Attenuation::try_polynomial(1.0, 0.7, 1.8).unwrap(),
+                1 => Attenuation::try_inverse_square(0.3).unwrap(),
+                _ => Attenuation::try_unreal(3.0).unwrap(),
+            };
+            PointLight::try_new(at, attenuation, colors(&mut rng))
+                .unwrap()
+                .into()
+        })
+        .collect();
+    lights.push(
+        SpotLight::try_with_cone(
+            Vec3::new(12.0, 5.0, 3.0),
+            -Vec3::Z,
+            SpotCone::degrees(25.0).with_exponent(3.0),
+            Attenuation::try_inverse_square(2.0).unwrap(),
+            colors(&mut rng),
+        )
+        .unwrap()
+        .into(),
+    );
+    lights.push(
+        DirectionalLight::try_new(Vec3::new(0.3, 0.2, 1.0), colors(&mut rng))
+            .unwrap()
+            .into(),
+    );
+    Frame {
+        width,
+        p: split(&pts),
+        n: split(&nor),
+        coverage,
+        lights,
+    }
+}
+
+/// `shade_gbuffer` and `shade_gbuffer_tiled` of `frame` at `level`, with the sentinel −1 where
+/// nothing is written.
+fn culled_and_not(
+    level: Level,
+    model: &Model,
+    m: &Material,
+    frame: &Frame,
+    threshold: f32,
+    visibility: Option<&[f32]>,
+) -> (Vec<Vec3>, Vec<Vec3>) {
+    let scene = Scene {
+        lights: &frame.lights,
+        ambient: Vec3::splat(0.01),
+        viewer: Viewer::At(Vec3::new(12.0, -6.0, 9.0)),
+    };
+    let (p, n) = (&frame.p, &frame.n);
+    let mut g = GBuffer::new(
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&n[0], &n[1], &n[2]),
+    )
+    .with_coverage(&frame.coverage);
+    if let Some(v) = visibility {
+        g = g.with_visibility(v);
+    }
+    let len = frame.coverage.len();
+    let shade = |tiled: bool| {
+        let (mut r, mut gr, mut b) = (vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]);
+        let out = SoaRgb::new(&mut r, &mut gr, &mut b);
+        let shaded = if tiled {
+            let culling = TileCulling {
+                width: frame.width,
+                tile: 16,
+                threshold,
+            };
+            let mut scratch = frame.lights.clone();
+            phong::shade_gbuffer_tiled_with_level(
+                level,
+                model,
+                m,
+                &scene,
+                &g,
+                culling,
+                &mut scratch,
+                out,
+            )
+        } else {
+            phong::shade_gbuffer_with_level(level, model, m, &scene, &g, out)
+        };
+        assert_eq!(shaded.unwrap(), len);
+        (0..len)
+            .map(|i| Vec3::new(r[i], gr[i], b[i]))
+            .collect::<Vec<_>>()
+    };
+    (shade(false), shade(true))
+}
+
+/// Tile culling drops lights (the pictures differ), but at each pixel by no more than
+/// `TileCulling`'s bound summed over the lights whose factor there is below the threshold (only
+/// those can have been dropped: a light reaching the threshold at a pixel reaches it in the
+/// pixel's tile), plus the rounding of both sums; background pixels stay unwritten.
+#[test]
+fn tile_culling_stays_within_its_documented_bound() {
+    let frame = many_lights(0x711e);
+    let threshold = 2e-3;
+    let m = Material::try_new(
+        Vec3::splat(0.3),
+        Vec3::new(0.8, 0.6, 0.4),
+        Vec3::splat(0.5),
+        24.0,
+    )
+    .unwrap();
+    let models: [(Model, f32, f32); 2] = [
+        (Phong::default().into(), 1.0, 1.0),
+        (
+            BlinnPhong {
+                normalization: Normalization::Energy,
+                ..BlinnPhong::default()
+            }
+            .into(),
+            Normalization::Energy.diffuse(1.0),
+            Normalization::Energy.blinn_factor(24.0),
+        ),
+    ];
+    let lights = frame.lights.len() as f32;
+    for (model, dscale, sscale) in models {
+        for level in Level::supported() {
+            let (full, culled) = culled_and_not(level, &model, &m, &frame, threshold, None);
+            let mut differ = 0;
+            for i in 0..full.len() {
+                if !frame.coverage[i] {
+                    assert_eq!(culled[i], Vec3::splat(-1.0), "{level}: background {i}");
+                    continue;
+                }
+                let p = Vec3::new(frame.p[0][i], frame.p[1][i], frame.p[2][i]);
+                let mut bound = Vec3::ZERO;
+                for light in &frame.lights {
+                    // Only a light whose factor here is below the threshold (with room for the
+                    // rounding of the tile's distance) can have been left out.
+                    if light.sample(p).factor >= threshold * (1.0 + 1e-4) {
+                        continue;
+                    }
+                    let c = light.colors();
+                    bound += threshold
+                        * (1.0 + 1e-4)
+                        * (m.ambient() * c.ambient()
+                            + m.diffuse() * c.diffuse() * dscale
+                            + m.specular() * c.specular() * sscale);
+                }
+                let rounding = (full[i] + culled[i]) * (8.0 + 2.0 * lights) * f32::EPSILON / 2.0;
+                let diff = (culled[i] - full[i]).abs();
+                differ += usize::from(diff != Vec3::ZERO);
+                assert!(
+                    diff.cmple(bound + rounding).all(),
+                    "{level}: pixel {i}: culled {} against {}, bound {bound}",
+                    culled[i],
+                    full[i]
+                );
+            }
+            assert!(differ > 100, "{level}: only {differ} pixels changed");
+        }
+    }
+}
+
+/// With a threshold of 0 no light is dropped, and with visibility planes the call does not cull:
+/// both are `shade_gbuffer`, bit for bit.
+#[test]
+fn tile_culling_without_dropping_is_shade_gbuffer() {
+    let frame = many_lights(0x5eed);
+    let m = Material::try_from_color(Vec3::ONE, 16.0).unwrap();
+    let model: Model = Phong::default().into();
+    let len = frame.coverage.len();
+    let visibility: Vec<f32> = (0..len * frame.lights.len())
+        .map(|k| (k % 7) as f32 / 6.0)
+        .collect();
+    for level in Level::supported() {
+        let (full, culled) = culled_and_not(level, &model, &m, &frame, 0.0, None);
+        assert_eq!(full, culled, "{level}: threshold 0");
+        let (full, culled) = culled_and_not(level, &model, &m, &frame, 0.1, Some(&visibility));
+        assert_eq!(full, culled, "{level}: with visibility");
     }
 }

@@ -162,7 +162,7 @@ impl<'a> GBuffer<'a> {
     }
 
     /// The first `n` positions and normals (`n` at most [`len`](Self::len)).
-    fn prefix(&self, n: usize) -> (SoaVec3<'a>, SoaVec3<'a>) {
+    pub(super) fn prefix(&self, n: usize) -> (SoaVec3<'a>, SoaVec3<'a>) {
         let (p, q) = (self.positions, self.normals);
         (
             SoaVec3::new(&p.x[..n], &p.y[..n], &p.z[..n]),
@@ -172,7 +172,7 @@ impl<'a> GBuffer<'a> {
 
     /// The kernel's view of the per-point inputs, and how many points can be shaded: 0 when the
     /// visibility slice is too short for `lights` planes.
-    fn inputs(&self, lights: usize) -> (PointInputs<'a>, usize) {
+    pub(super) fn inputs(&self, lights: usize) -> (PointInputs<'a>, usize) {
         let stride = self.positions.x.len();
         let n = self.len();
         let short = self
@@ -338,7 +338,7 @@ pub fn shade_gbuffer_xrgb8_with_level<M: BatchModel, L: BatchLight>(
     Ok(encoded(level, model, material, scene, gbuffer, out, xrgb))
 }
 
-fn run<M: BatchModel, L: BatchLight>(
+pub(super) fn run<M: BatchModel, L: BatchLight>(
     level: Level,
     model: &M,
     material: &Material,
