@@ -133,7 +133,7 @@ fn accuracy_md() -> String {
             "triangle",
             "naive: normalize((P1",
             "reflect",
-            "halfway",
+            "halfway_or_zero",
             "naive: normalize(L",
             "face_forward",
             "normal_matrix",
@@ -271,14 +271,14 @@ fn sliver_section(o: &mut String) {
     o.push_str(
         "A median of 0 means most triangles come out exact: far from the origin the `f32` \
          vertices sit on a coarse grid, their edges are small multiples of one spacing and the \
-         `f32` products are exact. `phong::triangle_normal` returns a unit vector rounded to \
+         `f32` products are exact. `phong::triangle_normal_or_zero` returns a unit vector rounded to \
          `f32`, so its floor is the rounding of the normalised components, about 1e-8 rad.\n\n",
     );
     let ratio = naive_worst / phong_worst;
     let _ = writeln!(
         o,
         "**Target: ≥ 10× smaller worst-case error than naive on the whole set, caps included.** \
-         `phong::triangle_normal`: {} rad against naive {} rad, {}× smaller: {}.\n",
+         `phong::triangle_normal_or_zero`: {} rad against naive {} rad, {}× smaller: {}.\n",
         g(phong_worst),
         g(naive_worst),
         g(ratio),
@@ -315,7 +315,7 @@ fn sliver_section(o: &mut String) {
     // Per-component ulps of the crate's unit normal (its documented "about 1 ulp per component").
     let (mut comp, mut big) = (0.0f64, 0.0f64);
     for t in &set {
-        let got = phong::triangle_normal(t.p[0], t.p[1], t.p[2]).as_dvec3();
+        let got = phong::triangle_normal_or_zero(t.p[0], t.p[1], t.p[2]).as_dvec3();
         let want = reference::triangle_normal(t.p[0], t.p[1], t.p[2]);
         let m = want.abs().max_element();
         for i in 0..3 {
@@ -326,7 +326,7 @@ fn sliver_section(o: &mut String) {
     }
     let _ = writeln!(
         o,
-        "`phong::triangle_normal` on the whole set: at most {} ulp per component (each component \
+        "`phong::triangle_normal_or_zero` on the whole set: at most {} ulp per component (each component \
          against its own spacing) and {} ulp of the largest component.\n",
         g(comp),
         g(big)
@@ -340,7 +340,7 @@ fn sliver_section(o: &mut String) {
          vertices agree to within a factor of 2: far from the origin (offset ≫ size). Near the \
          origin an edge such as `0.3 − (−0.6)` rounds, the rounding moves a vertex by about \
          `2⁻²⁴ · size`, and a sliver of height `aspect · size` turns by `2⁻²⁴ / aspect` \
-         radians: no cross-product trick recovers that, as the offset-1 row shows. `phong::triangle_normal` \
+         radians: no cross-product trick recovers that, as the offset-1 row shows. `phong::triangle_normal_or_zero` \
          computes each component of the area vector as an exact sum of the six `f32` \
          coordinate products (each exact in `f64`), rounded once, so no edge is ever rounded; \
          the cost does not matter for a once-per-mesh operation.\n\n",
@@ -355,7 +355,7 @@ fn halfway_section(o: &mut String) {
          normalisation keep `H` accurate; the difference is the exact tie, where the naive form \
          returns NaN and the crate the documented zero vector.\n\n",
     );
-    o.push_str("| δ (rad) | `phong::halfway` angle error | naive `normalize(L+V)` angle error |\n|---:|---:|---:|\n");
+    o.push_str("| δ (rad) | `phong::halfway_or_zero` angle error | naive `normalize(L+V)` angle error |\n|---:|---:|---:|\n");
     let mut rng = rng::Rng::new(70);
     for k in 1..=7 {
         let delta = 10f64.powi(-k);
@@ -368,7 +368,7 @@ fn halfway_section(o: &mut String) {
                 continue;
             }
             a = a.max(slivers::angle_between(
-                phong::halfway(l, v).as_dvec3(),
+                phong::halfway_or_zero(l, v).as_dvec3(),
                 want,
             ));
             b = b.max(slivers::angle_between((l + v).normalize().as_dvec3(), want));
@@ -378,8 +378,8 @@ fn halfway_section(o: &mut String) {
     let l = Vec3::new(0.6, 0.0, 0.8);
     let _ = writeln!(
         o,
-        "| 0 (exact tie) | `halfway` = {:?} | naive = {:?} |\n",
-        phong::halfway(l, -l),
+        "| 0 (exact tie) | `halfway_or_zero` = {:?} | naive = {:?} |\n",
+        phong::halfway_or_zero(l, -l),
         (l + -l).normalize()
     );
 
@@ -391,7 +391,7 @@ fn halfway_section(o: &mut String) {
          (`Incidence::from_cosines`) has the denominator `4ε²`, below the `f32` resolution of \
          `L·V ≈ −1` once `ε` is small, and loses the highlight. This measurement is why \
          `Incidence::new` (which `shade` uses) computes `(N·H)²` from `L + V` and `‖L+V‖²` \
-         instead: it keeps full precision, like the vector form (`halfway`, then the power). \
+         instead: it keeps full precision, like the vector form (`halfway_or_zero`, then the power). \
          s = 32.\n\n",
     );
     o.push_str("| ε (rad) | reference | `BlinnPhong::specular` (`Incidence::new`) | cosine form (`Incidence::from_cosines`) | vector form `lobe(N·halfway(L,V))` | naive `pow(dot(N, normalize(L+V)), s)` | `Phong::specular` (reference 1) |\n|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -411,7 +411,7 @@ fn halfway_section(o: &mut String) {
             &Incidence::from_cosines(g3.n_dot_l, g3.n_dot_v, g3.l_dot_v),
             32.0,
         );
-        let vector = phong::PowStrategy::Exact.lobe(n.dot(phong::halfway(l, v)), 32.0);
+        let vector = phong::PowStrategy::Exact.lobe(n.dot(phong::halfway_or_zero(l, v)), 32.0);
         let naive = n.dot((l + v).normalize()).max(0.0).powf(32.0);
         let ph = Phong::default().specular(&g3, 32.0);
         let _ = writeln!(

@@ -9,7 +9,7 @@
 //!   to the viewer, `N` the outward normal. (GLSL's and glam's `reflect(I, N)` take the *incident*
 //!   direction `I = −L`; see [`reflect`].)
 //! - **Vectors are unit** unless a name or doc says otherwise. Fast functions document this and
-//!   `debug_assert!` it; total functions ([`shade`], [`normalize_or_zero`], [`triangle_normal`], …)
+//!   `debug_assert!` it; total functions ([`shade`], [`normalize_or_zero`], [`triangle_normal_or_zero`], …)
 //!   accept anything finite.
 //! - **Colours are linear** RGB, each channel `≥ 0`; encode for display with [`srgb_encode`].
 //! - **Units:** distances in whatever unit the scene uses; the attenuation constants (`ε = 0.01`)
@@ -23,7 +23,7 @@
 //! | `L` | unit direction to the light | `l`, [`LightSample::direction`] |
 //! | `V` | unit direction to the viewer | `v` |
 //! | `R` | mirror of `L` about `N`: `2(N·L)N − L` | [`reflect`] |
-//! | `H` | halfway vector `(L+V)/‖L+V‖` | [`halfway`] |
+//! | `H` | halfway vector `(L+V)/‖L+V‖` | [`halfway_or_zero`] |
 //! | `s` | shininess (specular exponent) | [`Material::shininess`] |
 //! | `Ka, Kd, Ks, Ke` | ambient, diffuse, specular reflectance; emission | [`Material`] |
 //! | `Ia` | scene ambient light | [`Scene::ambient`] |
@@ -142,7 +142,7 @@ pub use color::{
 pub use error::PhongError;
 pub use face_forward::face_forward;
 pub use gate::SpecularGate;
-pub use halfway::{halfway, try_halfway};
+pub use halfway::{halfway_or_zero, try_halfway};
 pub use incidence::Incidence;
 pub use lambert::Lambert;
 pub use light::{
@@ -162,7 +162,7 @@ pub use shade::{Scene, Viewer, shade};
 pub use shader::Shader;
 pub use surface::Surface;
 pub use terms::Terms;
-pub use triangle::{triangle_area_normal, triangle_normal, try_triangle_normal};
+pub use triangle::{triangle_area_normal, triangle_normal_or_zero, try_triangle_normal};
 pub use vertex_normals::vertex_normals;
 pub use visibility::{Unshadowed, Visibility, VisibilityFn};
 

@@ -77,14 +77,14 @@ const BOUNDS: &[Bound] = &[
         "measured 0.500 ulp on slivers: the doc's exact-then-rounded-once claim",
     ),
     Bound(
-        "triangle_normal",
+        "triangle_normal_or_zero",
         "random triangles",
         Ulp,
         1.0,
         "measured 0.500 ulp: the doc's \"about 1 ulp per component\"",
     ),
     Bound(
-        "triangle_normal",
+        "triangle_normal_or_zero",
         "sliver set",
         Ulp,
         1.0,
@@ -105,14 +105,14 @@ const BOUNDS: &[Bound] = &[
         "measured 2.02 ulp",
     ),
     Bound(
-        "halfway",
+        "halfway_or_zero",
         "unit L, V uniform",
         Ulp,
         4.0,
         "measured 2.60 ulp: one add, then normalize_or_zero",
     ),
     Bound(
-        "halfway",
+        "halfway_or_zero",
         "V = −L turned",
         Ulp,
         4.0,
@@ -756,7 +756,7 @@ fn naive_rows_show_the_failures_the_docs_describe() {
     );
     // Naive slivers lose digits; the crate keeps them.
     let naive = get("naive: normalize((P1−P0)×(P2−P0))", "sliver set");
-    let ours = get("triangle_normal", "sliver set");
+    let ours = get("triangle_normal_or_zero", "sliver set");
     assert!(
         naive.stats.max_rel > 1000.0 * ours.stats.max_rel,
         "naive sliver normal {} vs ours {}",
@@ -793,7 +793,7 @@ fn sliver_study_meets_the_10x_target_and_one_ulp() {
     }
     // The doc's "about 1 ulp per component": measured 0.500 on the full set.
     for t in &set {
-        let got = phong::triangle_normal(t.p[0], t.p[1], t.p[2]).as_dvec3();
+        let got = phong::triangle_normal_or_zero(t.p[0], t.p[1], t.p[2]).as_dvec3();
         let want = reference::triangle_normal(t.p[0], t.p[1], t.p[2]);
         for i in 0..3 {
             let ulps = (got[i] - want[i]).abs() / measure::ulp_f32(want[i]);
@@ -840,14 +840,14 @@ fn halfway_is_exact_to_the_tie_and_zero_at_it() {
             if want == DVec3::ZERO {
                 continue;
             }
-            let e = slivers::angle_between(phong::halfway(l, v).as_dvec3(), want);
+            let e = slivers::angle_between(phong::halfway_or_zero(l, v).as_dvec3(), want);
             // Full run: at most 6.1e-8 rad at every δ.
             assert!(e < 2e-7, "δ = {delta}: halfway off by {e} rad");
         }
     }
     let l = Vec3::new(0.6, 0.0, 0.8);
     assert_eq!(
-        phong::halfway(l, -l),
+        phong::halfway_or_zero(l, -l),
         Vec3::ZERO,
         "the documented zero at L = −V"
     );

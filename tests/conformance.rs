@@ -539,7 +539,7 @@ fn normalize_matches_glsl() {
 
 #[test]
 fn triangle_normal_matches_glsl() {
-    // GLSL: normalize(cross(p1 − p0, p2 − p0)) in f32. phong::triangle_normal computes the cross
+    // GLSL: normalize(cross(p1 − p0, p2 − p0)) in f32. phong::triangle_normal_or_zero computes the cross
     // product in f64 from exact edges, so it is the exact normal rounded once: the error budget is
     // Mesa's. Rounding the two edges moves them by ≤ √3·U‖e‖ each and the f32 cross product adds
     // ≤ 2√2·U‖e₁‖‖e₂‖, so Mesa's raw cross product is off by ≤ (2√3 + 2√2)U‖e₁‖‖e₂‖ ≤ 6.3U‖e₁‖‖e₂‖;
@@ -556,7 +556,7 @@ fn triangle_normal_matches_glsl() {
         let a = e1.cross(e2);
         let cond = e1.length() * e2.length() / a.length();
         let tol = 8.0 * U * cond + 4.0 * U;
-        let n = phong::triangle_normal(p0, p1, p2);
+        let n = phong::triangle_normal_or_zero(p0, p1, p2);
         let err = (n.as_dvec3() - out.as_dvec3()).length();
         worst = worst.max(err / tol);
         let area = phong::triangle_area_normal(p0, p1, p2);

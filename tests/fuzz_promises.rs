@@ -353,9 +353,9 @@ fn geometry(r: &mut Rng, c: &mut Check) {
 
     let a = r.direction(Vec3::Z);
     let b = r.direction(a);
-    let h = phong::halfway(a, b);
-    c.count("halfway", 1);
-    c.expect("halfway", unit_or_zero(h), || {
+    let h = phong::halfway_or_zero(a, b);
+    c.count("halfway_or_zero", 1);
+    c.expect("halfway_or_zero", unit_or_zero(h), || {
         format!("halfway({a:?}, {b:?}) = {h:?}")
     });
 
@@ -381,23 +381,23 @@ fn geometry(r: &mut Rng, c: &mut Check) {
         _ => p1,
     };
     let area = phong::triangle_area_normal(p0, p1, p2);
-    let tn = phong::triangle_normal(p0, p1, p2);
+    let tn = phong::triangle_normal_or_zero(p0, p1, p2);
     let ttn = phong::try_triangle_normal(p0, p1, p2);
     c.count("triangle_area_normal", 1);
-    c.count("triangle_normal", 1);
+    c.count("triangle_normal_or_zero", 1);
     c.count("try_triangle_normal", 1);
     c.expect("triangle_area_normal", !area.is_nan(), || {
         format!("({p0:?}, {p1:?}, {p2:?}) -> {area:?}")
     });
     c.expect(
-        "triangle_normal",
+        "triangle_normal_or_zero",
         unit_or_zero(tn) && ttn.unwrap_or(Vec3::ZERO) == tn,
         || format!("({p0:?}, {p1:?}, {p2:?}) -> {tn:?} / {ttn:?}"),
     );
     // The unit normal points along the area vector (its rounding of the same exact vector), unless
     // the area vector saturated or underflowed (its direction is then approximate, as documented).
     c.expect(
-        "triangle_normal",
+        "triangle_normal_or_zero",
         tn == Vec3::ZERO
             || area == Vec3::ZERO
             || area.abs().max_element() == f32::MAX
@@ -615,8 +615,8 @@ fn rest(r: &mut Rng, c: &mut Check) {
     c.count("try_halfway", 1);
     c.expect(
         "try_halfway",
-        th.map_or(phong::halfway(a, b) == Vec3::ZERO, |h| {
-            h == phong::halfway(a, b)
+        th.map_or(phong::halfway_or_zero(a, b) == Vec3::ZERO, |h| {
+            h == phong::halfway_or_zero(a, b)
         }),
         || format!("({a:?}, {b:?}) -> {th:?}"),
     );

@@ -108,7 +108,7 @@ proptest! {
     fn halfway_bisects_l_and_v(l in unit_vec3(), v in unit_vec3()) {
         let s = l + v;
         prop_assume!(s != Vec3::ZERO);
-        let h = phong::halfway(l, v);
+        let h = phong::halfway_or_zero(l, v);
         let sum = d(l) + d(v);
         // Exactly, H·(L − V) = (‖L‖² − ‖V‖²)/‖L + V‖ ≤ 6U/‖L+V‖ for the given f32 vectors. The
         // computed H: the sum rounds each component by U of ‖L+V‖ (so no cancellation blow-up)
@@ -125,7 +125,7 @@ proptest! {
     #[test]
     fn halfway_is_n_when_v_is_the_mirror_direction((n, l) in normal_and_light()) {
         let v = phong::reflect(n, l);
-        let h = phong::halfway(l, v);
+        let h = phong::halfway_or_zero(l, v);
         let nl = d(n).dot(d(l));
         // L + R = 2(N·L)N + δ with ‖δ‖ ≤ 9U (reflect) + U (the sum): the direction error is
         // ≤ 10U/(2 N·L); normalising adds ≤ 5U, and N itself is unit only to 1.5U. Bound:
@@ -140,7 +140,7 @@ proptest! {
         (n, l, v, tl, tv) in coplanar_nlv()
     ) {
         let r = phong::reflect(n, l);
-        let h = phong::halfway(l, v);
+        let h = phong::halfway_or_zero(l, v);
         let lhs = angle(d(n), d(h));
         let rhs = angle(d(r), d(v)) / 2.0;
         // The generating angles predict both sides: |θl + θv| / 2.
@@ -197,7 +197,7 @@ proptest! {
         // cancellation in 2 + 2L·V leaves few digits. Bound: 32U + 16U/√den + 16U/den, with den
         // taken exactly (in f64) from the vectors.
         let g = Incidence::new(n, l, v);
-        let h = phong::halfway(l, v);
+        let h = phong::halfway_or_zero(l, v);
         let vector = d(n).dot(d(h)).max(0.0).powi(2);
         let den = (d(l) + d(v)).length_squared();
         let tol = 32.0 * U + 16.0 * U / den.sqrt() + 16.0 * U / den;
@@ -293,7 +293,7 @@ proptest! {
 
     #[test]
     fn triangle_normal_is_perpendicular_to_both_edges((p0, p1, p2) in triangle()) {
-        let n = phong::triangle_normal(p0, p1, p2);
+        let n = phong::triangle_normal_or_zero(p0, p1, p2);
         prop_assume!(n != Vec3::ZERO);
         // n is the f64 unit normal (exact to 2⁻⁵²) rounded once per component: ‖n − n̂‖ ≤ U.
         // So |n·e| ≤ U‖e‖ plus the 2⁻⁵² of the f64 check; 2U‖e‖.
@@ -330,8 +330,8 @@ proptest! {
         // c·d − a·b, which rounds to exactly the negation. So the flip is bit-exact.
         let a = phong::triangle_area_normal(p0, p1, p2);
         prop_assert_eq!(phong::triangle_area_normal(p0, p2, p1), -a, "area normal, swap P1/P2");
-        let n = phong::triangle_normal(p0, p1, p2);
-        prop_assert_eq!(phong::triangle_normal(p0, p2, p1), -n, "unit normal, swap P1/P2");
+        let n = phong::triangle_normal_or_zero(p0, p1, p2);
+        prop_assert_eq!(phong::triangle_normal_or_zero(p0, p2, p1), -n, "unit normal, swap P1/P2");
         // Swapping P0 and P1 changes the origin vertex, so the f64 edges differ; both results are
         // the same exact vector rounded (f64, then f32), so each component is within one f32 ulp
         // (≤ 2U·|x|) of the other.
@@ -364,8 +364,8 @@ proptest! {
         prop_assert!(err <= tol, "‖A(P+t) − A(P)‖ = {err:e} > {tol:e} for t={t}");
         if a.length() > tol {
             // Unit normals: a perturbation ε of A turns its direction by ≤ 2ε/‖A‖.
-            let n = d(phong::triangle_normal(p0, p1, p2));
-            let m2 = d(phong::triangle_normal(q0, q1, q2));
+            let n = d(phong::triangle_normal_or_zero(p0, p1, p2));
+            let m2 = d(phong::triangle_normal_or_zero(q0, q1, q2));
             let dir_tol = 2.0 * tol / a.length() + 2.0 * U;
             prop_assert!(
                 (n - m2).length() <= dir_tol,

@@ -171,7 +171,7 @@ fn zero_area_triangles_have_no_normal() {
             "{what}: area normal"
         );
         assert_eq!(
-            phong::triangle_normal(a, b, c),
+            phong::triangle_normal_or_zero(a, b, c),
             Vec3::ZERO,
             "{what}: unit normal"
         );
@@ -186,7 +186,7 @@ fn zero_area_triangles_have_no_normal() {
 #[test]
 fn sliver_triangles_keep_their_normal() {
     // The conformance edge case: a 1e-7 sliver. In f64 the area vector is (0, 0, 1e-7) exactly.
-    let n = phong::triangle_normal(Vec3::ZERO, Vec3::X, Vec3::new(2.0, 1e-7, 0.0));
+    let n = phong::triangle_normal_or_zero(Vec3::ZERO, Vec3::X, Vec3::new(2.0, 1e-7, 0.0));
     assert_eq!(n, Vec3::Z, "sliver 1e-7 must give +Z");
     // Needles far from the origin, where the naive f32 cross product loses most digits. The f64
     // edges are exact, so the normal is the exact one: +Z in the xy plane.
@@ -194,20 +194,20 @@ fn sliver_triangles_keep_their_normal() {
         let o = Vec3::new(offset, -offset, offset);
         let h = offset * f32::EPSILON * 4.0; // a few ulps of the offset: the thinnest sliver
         let (p1, p2) = (o + Vec3::new(1.0, 0.0, 0.0), o + Vec3::new(2.0, h, 0.0));
-        let n = phong::triangle_normal(o, p1, p2);
+        let n = phong::triangle_normal_or_zero(o, p1, p2);
         assert!(
             (n - Vec3::Z).length() < 1e-6,
             "needle at {offset}, height {h}: {n}"
         );
         assert_eq!(
-            phong::triangle_normal(o, p2, p1),
+            phong::triangle_normal_or_zero(o, p2, p1),
             -n,
             "needle at {offset}: winding"
         );
     }
     // Collinear in exact arithmetic but not in f32: (3, 3, 3 + ulp) is a real, if tiny, triangle.
     let third = Vec3::new(3.0, 3.0, 3.0f32.next_up());
-    let n = phong::triangle_normal(Vec3::ZERO, Vec3::ONE, third);
+    let n = phong::triangle_normal_or_zero(Vec3::ZERO, Vec3::ONE, third);
     assert_unit_or_zero(n, "f32-rounded collinear");
     assert!(n != Vec3::ZERO, "a non-zero f32 area must give a normal");
     assert!(n.dot(Vec3::ONE).abs() < 1e-6, "normal ⟂ the long edge: {n}");
@@ -228,12 +228,12 @@ fn huge_tiny_and_subnormal_triangles() {
         "huge triangle: saturated area normal"
     );
     assert_eq!(
-        phong::triangle_normal(a, b, c),
+        phong::triangle_normal_or_zero(a, b, c),
         Vec3::Z,
         "huge triangle: unit normal"
     );
     assert_eq!(
-        phong::triangle_normal(a, c, b),
+        phong::triangle_normal_or_zero(a, c, b),
         -Vec3::Z,
         "huge triangle: flipped"
     );
@@ -242,7 +242,7 @@ fn huge_tiny_and_subnormal_triangles() {
     for s in [1e-20f32, 1e-38, 1e-40, 1e-44] {
         let (a, b, c) = (Vec3::ZERO, Vec3::new(s, 0.0, 0.0), Vec3::new(0.0, s, 0.0));
         assert_eq!(
-            phong::triangle_normal(a, b, c),
+            phong::triangle_normal_or_zero(a, b, c),
             Vec3::Z,
             "tiny triangle of size {s}"
         );
@@ -250,14 +250,14 @@ fn huge_tiny_and_subnormal_triangles() {
     }
     // Mixed scales: a huge offset with a unit-size triangle; and the smallest subnormal step.
     let o = Vec3::splat(1e30);
-    let n = phong::triangle_normal(
+    let n = phong::triangle_normal_or_zero(
         o,
         o + Vec3::new(1e23, 0.0, 0.0),
         o + Vec3::new(0.0, 1e23, 0.0),
     );
     assert_unit_or_zero(n, "1e23 triangle at 1e30");
     let tiny = f32::from_bits(1);
-    let n = phong::triangle_normal(
+    let n = phong::triangle_normal_or_zero(
         Vec3::ZERO,
         Vec3::new(tiny, 0.0, 0.0),
         Vec3::new(0.0, tiny, 0.0),
@@ -286,7 +286,7 @@ fn light_opposite_the_viewer() {
     let l = Vec3::new(2.0, 1.0, 3.0).normalize();
     let v = -l;
     // Documented: no halfway vector.
-    assert_eq!(phong::halfway(l, v), Vec3::ZERO, "halfway(L, −L)");
+    assert_eq!(phong::halfway_or_zero(l, v), Vec3::ZERO, "halfway(L, −L)");
     assert_eq!(phong::try_halfway(l, v), None, "try_halfway(L, −L)");
     for n in [Vec3::Z, l, -l, Vec3::X] {
         let g = Incidence::new(n, l, v);
@@ -408,12 +408,12 @@ fn zero_and_tiny_vectors_in_the_geometry() {
     );
     // halfway of zero vectors: zero, documented as "no halfway vector".
     assert_eq!(
-        phong::halfway(Vec3::ZERO, Vec3::ZERO),
+        phong::halfway_or_zero(Vec3::ZERO, Vec3::ZERO),
         Vec3::ZERO,
         "halfway(0, 0)"
     );
     assert_eq!(
-        phong::halfway(Vec3::Z, Vec3::ZERO),
+        phong::halfway_or_zero(Vec3::Z, Vec3::ZERO),
         Vec3::Z,
         "halfway(Z, 0) = Z (normalised sum)"
     );
@@ -1240,7 +1240,7 @@ fn blinn_sees_the_grazing_mirror_highlight() {
         let l = Vec3::new(theta.cos(), 0.0, theta.sin());
         let v = phong::reflect(n, l);
         // The vector path: L + V = (0, 0, 2 sin θ) ≠ 0, so H exists and is N.
-        let h = phong::halfway(l, v);
+        let h = phong::halfway_or_zero(l, v);
         assert_eq!(
             h,
             Vec3::Z,

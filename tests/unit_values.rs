@@ -271,12 +271,16 @@ fn reflect_halfway_and_face_forward() {
     );
     // H of X and Y: (1, 1, 0)/√2.
     close_vec(
-        phong::halfway(Vec3::X, Vec3::Y),
+        phong::halfway_or_zero(Vec3::X, Vec3::Y),
         Vec3::new(FRAC_1_SQRT_2, FRAC_1_SQRT_2, 0.0),
         1.0,
         "halfway(X, Y)",
     );
-    assert_eq!(phong::halfway(Vec3::Z, Vec3::Z), Vec3::Z, "halfway(Z, Z)");
+    assert_eq!(
+        phong::halfway_or_zero(Vec3::Z, Vec3::Z),
+        Vec3::Z,
+        "halfway(Z, Z)"
+    );
     assert_eq!(phong::try_halfway(Vec3::X, -Vec3::X), None, "no halfway");
     // face_forward(N, V, Nref): N if Nref·V > 0, else −N (the tie goes to −N, as in GLSL).
     assert_eq!(
@@ -309,11 +313,15 @@ fn triangle_values() {
         Vec3::new(0.0, 0.0, 6.0),
         "A"
     );
-    assert_eq!(phong::triangle_normal(a, b, c), Vec3::Z, "N");
-    assert_eq!(phong::triangle_normal(a, c, b), -Vec3::Z, "clockwise");
+    assert_eq!(phong::triangle_normal_or_zero(a, b, c), Vec3::Z, "N");
+    assert_eq!(
+        phong::triangle_normal_or_zero(a, c, b),
+        -Vec3::Z,
+        "clockwise"
+    );
     // A 3-4-5 face tilted out of the xy plane: (1,0,0) × (0,4,3)... edges (1, 0, 0) and (0, 4, 3):
     // A = (0·3 − 0·4, 0·0 − 1·3, 1·4 − 0·0) = (0, −3, 4), ‖A‖ = 5, N = (0, −0.6, 0.8).
-    let n = phong::triangle_normal(a, Vec3::X, Vec3::new(0.0, 4.0, 3.0));
+    let n = phong::triangle_normal_or_zero(a, Vec3::X, Vec3::new(0.0, 4.0, 3.0));
     close_vec(n, Vec3::new(0.0, -0.6, 0.8), 1.0, "3-4-5 normal");
     assert_eq!(
         phong::triangle_area_normal(a, Vec3::X, Vec3::new(0.0, 4.0, 3.0)),

@@ -43,11 +43,11 @@ pub fn try_halfway(l: Vec3, v: Vec3) -> Option<Vec3> {
 ///
 /// ```
 /// use glam::Vec3;
-/// assert_eq!(phong::halfway(Vec3::Z, -Vec3::Z), Vec3::ZERO);
-/// assert_eq!(phong::halfway(Vec3::Z, Vec3::Z), Vec3::Z);
+/// assert_eq!(phong::halfway_or_zero(Vec3::Z, -Vec3::Z), Vec3::ZERO);
+/// assert_eq!(phong::halfway_or_zero(Vec3::Z, Vec3::Z), Vec3::Z);
 /// ```
 #[must_use]
 #[inline]
-pub fn halfway(l: Vec3, v: Vec3) -> Vec3 {
+pub fn halfway_or_zero(l: Vec3, v: Vec3) -> Vec3 {
     normalize_or_zero(l + v)
 }

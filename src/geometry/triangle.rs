@@ -224,13 +224,13 @@ pub fn try_triangle_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Vec3> {
 /// use glam::Vec3;
 /// // A needle 1e5 from the origin: naive f32 arithmetic loses most digits here.
 /// let o = Vec3::splat(1e5);
-/// let n = phong::triangle_normal(o, o + Vec3::new(1.0, 0.0, 0.0), o + Vec3::new(1.0, 1e-2, 0.0));
+/// let n = phong::triangle_normal_or_zero(o, o + Vec3::new(1.0, 0.0, 0.0), o + Vec3::new(1.0, 1e-2, 0.0));
 /// assert!((n - Vec3::Z).length() < 1e-6);
-/// assert_eq!(phong::triangle_normal(o, o, o), Vec3::ZERO);
+/// assert_eq!(phong::triangle_normal_or_zero(o, o, o), Vec3::ZERO);
 /// ```
 #[must_use]
 #[inline]
-pub fn triangle_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub fn triangle_normal_or_zero(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     try_triangle_normal(p0, p1, p2).unwrap_or(Vec3::ZERO)
 }
 
@@ -260,7 +260,7 @@ mod tests {
         let a = triangle_area_normal(Vec3::ZERO, Vec3::new(m, 0.0, 0.0), Vec3::new(0.0, m, 0.0));
         assert_eq!(a, Vec3::new(0.0, 0.0, f32::MAX));
         assert_eq!(
-            triangle_normal(Vec3::ZERO, Vec3::new(m, 0.0, 0.0), Vec3::new(0.0, m, 0.0)),
+            triangle_normal_or_zero(Vec3::ZERO, Vec3::new(m, 0.0, 0.0), Vec3::new(0.0, m, 0.0)),
             Vec3::Z
         );
     }

@@ -159,7 +159,7 @@ impl Incidence {
     /// Blinn's `(N·H)²`: the field [`n_dot_h_sq`](Self::n_dot_h_sq), clamped to `[0, 1]`.
     ///
     /// **Degenerate input:** at `L = −V` the halfway vector does not exist and this is 0, the same
-    /// answer as [`halfway`](crate::halfway) gives (the zero vector).
+    /// answer as [`halfway_or_zero`](crate::halfway_or_zero) gives (the zero vector).
     #[must_use]
     #[inline]
     pub fn n_dot_h_squared(&self) -> f32 {

@@ -576,7 +576,7 @@ fn geometry(n: usize, out: &mut Vec<Row>) {
                 input,
             );
             unit.vector(
-                phong::triangle_normal(p[0], p[1], p[2]),
+                phong::triangle_normal_or_zero(p[0], p[1], p[2]),
                 r::normalize_or_zero(want),
                 0.5,
                 input,
@@ -590,7 +590,7 @@ fn geometry(n: usize, out: &mut Vec<Row>) {
         }
         let d = "random triangles in a ball of radius 10";
         out.push(row("triangle_area_normal", ORD, d, true, 1e-30, area));
-        out.push(row("triangle_normal", ORD, d, true, 0.5, unit));
+        out.push(row("triangle_normal_or_zero", ORD, d, true, 0.5, unit));
         out.push(row(
             "naive: normalize((P1−P0)×(P2−P0))",
             ORD,
@@ -614,7 +614,7 @@ fn geometry(n: usize, out: &mut Vec<Row>) {
             let input = || format!("{:?}", t.p);
             area.vector(phong::triangle_area_normal(a, b, c), want, 0.0, input);
             unit.vector(
-                phong::triangle_normal(a, b, c),
+                phong::triangle_normal_or_zero(a, b, c),
                 r::normalize_or_zero(want),
                 0.5,
                 input,
@@ -628,7 +628,7 @@ fn geometry(n: usize, out: &mut Vec<Row>) {
         }
         let d = "sliver set (needles and caps, aspect 1e-1…1e-5, size 1e-2…1, offset 1…1e5)";
         out.push(row("triangle_area_normal", ADV, d, true, 0.0, area));
-        out.push(row("triangle_normal", ADV, d, true, 0.5, unit));
+        out.push(row("triangle_normal_or_zero", ADV, d, true, 0.5, unit));
         out.push(row(
             "naive: normalize((P1−P0)×(P2−P0))",
             ADV,
@@ -676,7 +676,7 @@ fn geometry(n: usize, out: &mut Vec<Row>) {
                 near_opposite(&mut rng)
             };
             let want = r::halfway(r::d3(l), r::d3(v));
-            s.vector(phong::halfway(l, v), want, 0.5, || {
+            s.vector(phong::halfway_or_zero(l, v), want, 0.5, || {
                 format!("l = {l:?}, v = {v:?}")
             });
             if l + v != Vec3::ZERO {
@@ -685,7 +685,7 @@ fn geometry(n: usize, out: &mut Vec<Row>) {
                 });
             }
         }
-        out.push(row("halfway", kind, domain, true, 0.5, s));
+        out.push(row("halfway_or_zero", kind, domain, true, 0.5, s));
         out.push(row(
             "naive: normalize(L + V)",
             kind,
@@ -1008,7 +1008,7 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
                 input,
             );
             // The vector form of Blinn's lobe with the crate's own pieces (halfway, then pow).
-            let vec_blinn = PowStrategy::Exact.lobe(nn.dot(phong::halfway(l, v)), s) * gate;
+            let vec_blinn = PowStrategy::Exact.lobe(nn.dot(phong::halfway_or_zero(l, v)), s) * gate;
             st[11].scalar(
                 vec_blinn,
                 r::blinn_specular(&BlinnPhong::default(), dn, dl, dv, sd),

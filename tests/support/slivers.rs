@@ -152,8 +152,8 @@ pub(crate) fn candidates() -> [Candidate; 4] {
             run: kahan,
         },
         Candidate {
-            name: "`phong::triangle_normal` (exact area vector)",
-            run: phong::triangle_normal,
+            name: "`phong::triangle_normal_or_zero` (exact area vector)",
+            run: phong::triangle_normal_or_zero,
         },
     ]
 }

@@ -324,7 +324,7 @@ pub(crate) fn cases() -> Vec<Case> {
                 code: "triangle_normal, try_triangle_normal, triangle_area_normal",
                 run: || {
                     let (a, b, c) = (Vec3::ZERO, Vec3::ONE, Vec3::splat(2.0));
-                    let mut x = v(phong::triangle_normal(a, b, c));
+                    let mut x = v(phong::triangle_normal_or_zero(a, b, c));
                     x.push(phong::try_triangle_normal(a, b, c).is_none() as u8 as f32);
                     x.extend(v(phong::triangle_area_normal(a, b, c)));
                     x
@@ -347,10 +347,15 @@ pub(crate) fn cases() -> Vec<Case> {
                 check: |x| x[0] > 1e-4,
             },
             phong: Side {
-                code: "triangle_normal(p0, p1, p2), angle to the exact normal (rad)",
+                code: "triangle_normal_or_zero(p0, p1, p2), angle to the exact normal (rad)",
                 run: || {
                     let (a, b, c) = sliver();
-                    vec![angle_to_exact(phong::triangle_normal(a, b, c), a, b, c)]
+                    vec![angle_to_exact(
+                        phong::triangle_normal_or_zero(a, b, c),
+                        a,
+                        b,
+                        c,
+                    )]
                 },
                 claim: "below 1e-6 rad (a few f32 ulps)",
                 check: |x| x[0] < 1e-6,
@@ -372,10 +377,10 @@ pub(crate) fn cases() -> Vec<Case> {
                 check: |x| any_nan(&x[..3]),
             },
             phong: Side {
-                code: "halfway, try_halfway, BlinnPhong::default().specular",
+                code: "halfway_or_zero, try_halfway, BlinnPhong::default().specular",
                 run: || {
                     let l = Vec3::new(0.6, 0.0, 0.8);
-                    let mut x = v(phong::halfway(l, -l));
+                    let mut x = v(phong::halfway_or_zero(l, -l));
                     x.push(phong::try_halfway(l, -l).is_none() as u8 as f32);
                     x.push(BlinnPhong::default().specular(&Incidence::new(Vec3::Z, l, -l), 32.0));
                     x
