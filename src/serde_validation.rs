@@ -75,14 +75,47 @@ validated_serde!(PointLight, |l| PointLight::try_new(
     l.attenuation(),
     *crate::LightSource::colors(&l)
 ));
-validated_serde!(SpotLight, |l| SpotLight::try_new(
-    l.position(),
-    l.axis(),
-    l.cutoff(),
-    l.exponent(),
-    l.attenuation(),
-    *crate::LightSource::colors(&l)
-));
+/// A spot light's stored form: its fields flat, as a scene file writes them (the struct keeps a
+/// `PointLight` inside, which a derive would nest; serde's `flatten` cannot deny unknown fields).
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpotLightFields {
+    position: Vec3,
+    axis: Vec3,
+    cutoff: f32,
+    exponent: f32,
+    attenuation: Attenuation,
+    colors: LightColors,
+}
+
+impl serde::Serialize for SpotLight {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        SpotLightFields {
+            position: self.position(),
+            axis: self.axis(),
+            cutoff: self.cutoff(),
+            exponent: self.exponent(),
+            attenuation: self.attenuation(),
+            colors: *crate::LightSource::colors(self),
+        }
+        .serialize(s)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for SpotLight {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let f = SpotLightFields::deserialize(d)?;
+        SpotLight::try_new(
+            f.position,
+            f.axis,
+            f.cutoff,
+            f.exponent,
+            f.attenuation,
+            f.colors,
+        )
+        .map_err(serde::de::Error::custom)
+    }
+}
 validated_serde!(Viewer, |v| viewer(v));
 validated_serde!(Terms, |t| terms(t));
 

@@ -549,22 +549,18 @@ impl SpotCone {
 /// surface to the light, `e` the exponent (`GL_SPOT_EXPONENT`) and `cutoff` the half-angle of the cone
 /// (`GL_SPOT_CUTOFF`, in radians here, in `[0, π/2]` or exactly `π`); see [`SpotCone`]. Derivation:
 /// docs/derivations.md, section "The spot factor".
+///
+/// A spot light is a [`PointLight`] (position, falloff, colours: [`point`](Self::point)) with a
+/// cone; it keeps one, so the point light's checks, getters and sampling are the spot's.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self", deny_unknown_fields)
-)]
 pub struct SpotLight {
-    position: Vec3,
+    /// Position, falloff and colours.
+    point: PointLight,
     axis: Vec3,
     cutoff: f32,
-    // Derived from `cutoff`; recomputed when deserialising.
-    #[cfg_attr(feature = "serde", serde(skip))]
+    // Derived from `cutoff` (serde does not store it).
     cos_cutoff: f32,
     exponent: f32,
-    attenuation: Attenuation,
-    colors: LightColors,
 }
 
 impl SpotLight {
@@ -630,6 +626,7 @@ impl SpotLight {
         attenuation: Attenuation,
         colors: LightColors,
     ) -> Result<Self, PhongError> {
+        // The spot's own checks between the position's and the falloff's, in the fields' order.
         finite_point("light.position", position)?;
         let axis = error::direction("light.axis", axis)?;
         let SpotCone { cutoff, exponent } = cone;
@@ -648,14 +645,13 @@ impl SpotLight {
                 max: half_pi,
             });
         }
+        let exponent = error::non_negative("light.exponent", exponent)?;
         Ok(SpotLight {
-            position,
+            point: PointLight::try_new(position, attenuation, colors)?,
             axis,
             cutoff,
             cos_cutoff: cos_cutoff(cutoff),
-            exponent: error::non_negative("light.exponent", exponent)?,
-            attenuation: attenuation.validated()?,
-            colors,
+            exponent,
         })
     }
 
@@ -694,7 +690,12 @@ impl SpotLight {
         };
         let axis = crate::normalize_or_zero(axis);
         SpotLight {
-            position,
+            // Checked by the assertion above (as `PointLight::new` would assert it).
+            point: PointLight {
+                position,
+                attenuation,
+                colors,
+            },
             axis,
             cutoff,
             // A zero axis has no cone: `−L·D = 0` must never pass, so the threshold is above 1.
@@ -704,8 +705,6 @@ impl SpotLight {
                 cos_cutoff(cutoff)
             },
             exponent: math::clamp_or_lo(cone.exponent, 0.0, math::MAX),
-            attenuation,
-            colors,
         }
     }
 
@@ -719,11 +718,17 @@ impl SpotLight {
         }
     }
 
-    /// The light's position.
+    /// The light without its cone: position, falloff and colours.
+    #[must_use]
+    #[inline]
+    pub fn point(&self) -> &PointLight {
+        &self.point
+    }
+    /// The light's position (its [`point`](Self::point)'s).
     #[must_use]
     #[inline]
     pub fn position(&self) -> Vec3 {
-        self.position
+        self.point.position()
     }
     /// The unit axis of the cone.
     #[must_use]
@@ -750,11 +755,11 @@ impl SpotLight {
     pub fn exponent(&self) -> f32 {
         self.exponent
     }
-    /// The light's falloff.
+    /// The light's falloff (its [`point`](Self::point)'s).
     #[must_use]
     #[inline]
     pub fn attenuation(&self) -> Attenuation {
-        self.attenuation
+        self.point.attenuation()
     }
 
     /// The cone factor for unit `L` (from surface to light), in `[0, 1]`; 0 for a zero `L`; 1 for
@@ -776,20 +781,20 @@ impl SpotLight {
 impl LightSource for SpotLight {
     #[inline]
     fn colors(&self) -> &LightColors {
-        &self.colors
+        self.point.colors()
     }
-    /// The attenuation at distance 0 (the spot factor is at most 1).
+    /// The point light's (the spot factor is at most 1).
     #[inline]
     fn max_factor(&self) -> f32 {
-        self.attenuation.factor(0.0)
+        self.point.max_factor()
     }
-    /// Like [`PointLight`], times [`SpotLight::spot_factor`].
+    /// The [`PointLight`]'s sample, its factor times [`SpotLight::spot_factor`].
     #[inline]
     fn sample(&self, p: Vec3) -> LightSample {
-        let (direction, d) = direction_and_distance(self.position, p);
+        let LightSample { direction, factor } = self.point.sample(p);
         let spot = self.spot_factor(direction);
         let factor = if spot > 0.0 {
-            (self.attenuation.factor(d) * spot).min(math::MAX)
+            (factor * spot).min(math::MAX)
         } else {
             0.0
         };
