@@ -691,6 +691,26 @@ fn gbuffer_4096(c: &mut Criterion) {
             shininess: &shininess,
         })
         .with_visibility(&shadow);
+    // The same texels as a renderer keeps them, 8-bit sRGB, decoded in the kernel: a white
+    // surface whose ambient and diffuse the texel multiplies.
+    let texels8: Vec<[u8; 4]> = texel
+        .iter()
+        .map(|t| {
+            let [r, g, b] = phong::linear_to_srgb8(Vec3::from(*t));
+            [r, g, b, 255]
+        })
+        .collect();
+    let ones = vec![1.0f32; n];
+    let white = SoaVec3::new(&ones, &ones, &ones);
+    let buffer8 = phong::GBuffer::new(SoaVec3::new(&px, &py, &pz), SoaVec3::new(&nx, &ny, &nz))
+        .with_surface(phong::SoaSurface {
+            ambient: white,
+            diffuse: white,
+            specular: SoaVec3::new(&strength, &strength, &strength),
+            shininess: &shininess,
+        })
+        .with_albedo_srgb8(&texels8)
+        .with_visibility(&shadow);
     let (mut r, mut gr, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut frame = vec![[0u8; 4]; n];
 
@@ -737,6 +757,17 @@ fn gbuffer_4096(c: &mut Criterion) {
                 &m20,
                 &scene,
                 black_box(&buffer),
+                &mut frame,
+            )
+        })
+    });
+    g.bench_function("gbuffer_albedo8_rgba8", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer_rgba8(
+                black_box(&model),
+                &m20,
+                &scene,
+                black_box(&buffer8),
                 &mut frame,
             )
         })

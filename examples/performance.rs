@@ -716,6 +716,7 @@ fn main() {
     let frac = mpts("gbuffer_4096", "batch_frac", 4096, "new");
     let gb_f32 = mpts("gbuffer_4096", "gbuffer_f32", 4096, "new");
     let gb_rgba8 = mpts("gbuffer_4096", "gbuffer_rgba8", 4096, "new");
+    let gb_albedo8 = mpts("gbuffer_4096", "gbuffer_albedo8_rgba8", 4096, "new");
     let gb_acc = gbuffer_accuracy(&p, &nn, &soa);
     let _ = writeln!(
         md,
@@ -725,8 +726,12 @@ fn main() {
          `f32` and into 8-bit RGBA (`shade_gbuffer_rgba8`), against `batch_frac` (`shade_batch`, \
          the same points under one material of shininess 20.5). Phong, one point light, best \
          level, million points per second:\n\n\
-         | `batch_frac` | `shade_gbuffer` (`f32`) | ratio | `shade_gbuffer_rgba8` | ratio |\n\
-         |---:|---:|---:|---:|---:|\n| {} | {} | {} | {} | {} |\n\n\
+         | `batch_frac` | `shade_gbuffer` (`f32`) | ratio | `shade_gbuffer_rgba8` | ratio | \
+         RGBA8 with 8-bit sRGB albedo | ratio |\n\
+         |---:|---:|---:|---:|---:|---:|---:|\n| {} | {} | {} | {} | {} | {} | {} |\n\n\
+         The last pair reads the texels as a renderer keeps them, 8-bit sRGB \
+         (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a 256-entry table), in place of \
+         linear `f32` reflectances.\n\n\
          Why it is slower than one material: the AVX-512 level's intrinsics kernel has no \
          per-point inputs, so a G-buffer call there runs the one portable source compiled for \
          AVX-512, about 2.5× slower than the intrinsics on plain calls (see the levels table: \
@@ -742,6 +747,8 @@ fn main() {
         fmt_opt(frac.zip(gb_f32).map(|(a, b)| b / a), 2),
         fmt_opt(gb_rgba8, 0),
         fmt_opt(frac.zip(gb_rgba8).map(|(a, b)| b / a), 2),
+        fmt_opt(gb_albedo8, 0),
+        fmt_opt(frac.zip(gb_albedo8).map(|(a, b)| b / a), 2),
         gb_acc.max_abs,
         gb_acc.mismatch
     );

@@ -725,7 +725,7 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
         if let Some(k) = &shading.kernel {
             let per_lane_pow =
                 k.lm.pow == crate::PowStrategy::Auto || k.lm.lobe == prepare::Lobe::None;
-            if inputs.surface.is_some() && !per_lane_pow {
+            if inputs.per_point_surface() && !per_lane_pow {
                 shading.kernel = None;
             }
         }
@@ -772,18 +772,16 @@ fn scalar<M: BatchModel, L: BatchLight>(
             Vec3::new(pos.x[i], pos.y[i], pos.z[i]),
             Vec3::new(nor.x[i], nor.y[i], nor.z[i]),
         );
-        let c = match (inputs.surface, inputs.visibility) {
+        let c = match (inputs.surface(i, 1), inputs.visibility) {
             (None, None) => crate::shade(model, material, scene, p, q),
-            (surface, visibility) => {
+            (surface, _) => {
                 let surface = surface.map_or(crate::Surface::of(material), |s| crate::Surface {
-                    ambient: Vec3::new(s[0][i], s[1][i], s[2][i]),
-                    diffuse: Vec3::new(s[3][i], s[4][i], s[5][i]),
-                    specular: Vec3::new(s[6][i], s[7][i], s[8][i]),
-                    shininess: s[9][i],
+                    ambient: Vec3::new(s[0][0], s[1][0], s[2][0]),
+                    diffuse: Vec3::new(s[3][0], s[4][0], s[5][0]),
+                    specular: Vec3::new(s[6][0], s[7][0], s[8][0]),
+                    shininess: s[9][0],
                 });
-                let vis = crate::VisibilityFn(|j| {
-                    visibility.map_or(1.0, |(v, stride)| v[j * stride + i])
-                });
+                let vis = crate::VisibilityFn(|j| inputs.visibility(j, i, 1)[0]);
                 shader.shade_surface(p, q, &surface, vis)
             }
         }

@@ -115,7 +115,7 @@ pub mod shading_rate;
 mod surfaces;
 
 // The layers' modules by their own names, so `crate::pow`, `crate::light`, … name them.
-use colour::{color, srgb8};
+use colour::{color, srgb8, srgb8_to_linear};
 use geometry::{
     expansion, face_forward, halfway, normal_matrix, normalize, reflect, triangle, vertex_normals,
 };
@@ -160,6 +160,7 @@ pub use reflect::reflect;
 pub use resolved_model::ResolvedModel;
 pub use shade::{Scene, Viewer, shade};
 pub use shader::Shader;
+pub use srgb8_to_linear::srgb8_to_linear;
 pub use surface::Surface;
 pub use terms::Terms;
 pub use triangle::{triangle_area_normal, triangle_normal_or_zero, try_triangle_normal};

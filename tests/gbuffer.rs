@@ -707,3 +707,122 @@ fn tile_culling_without_dropping_is_shade_gbuffer() {
         assert_eq!(full, culled, "{level}: with visibility");
     }
 }
+
+/// 8-bit sRGB albedo: the kernel decodes each texel with `srgb8_to_linear` and multiplies the
+/// surface's (or the material's) ambient and diffuse reflectance by it, so the output equals the
+/// call with those products as an `f32` surface, bit for bit, at every level, with and without a
+/// surface, degenerate points included (they take the scalar path with the same surface).
+#[test]
+fn albedo_texels_are_the_decoded_surface() {
+    let mut rng = Rng::new(0xa1be);
+    let lamps = lamps(&mut rng, 2);
+    let eye = Vec3::new(0.0, 1.0, 4.0);
+    let len = 300;
+    let g = points(&mut rng, len, &lamps, eye);
+    let lights: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = Scene {
+        lights: &lights,
+        ambient: Vec3::splat(0.05),
+        viewer: Viewer::At(eye),
+    };
+    let base = Material::try_new(
+        Vec3::splat(0.3),
+        Vec3::new(0.9, 0.8, 0.7),
+        Vec3::splat(0.4),
+        20.5,
+    )
+    .unwrap();
+    let model: Model = Phong::default().into();
+    let texels: Vec<[u8; 4]> = (0..len)
+        .map(|_| {
+            let mut t = [0u8; 4];
+            for c in &mut t {
+                *c = (rng.unit_f32() * 256.0).min(255.0) as u8;
+            }
+            t
+        })
+        .collect();
+    let decoded: Vec<Vec3> = texels
+        .iter()
+        .map(|t| {
+            let [r, g, b, _] = t.map(phong::srgb8_to_linear);
+            Vec3::new(r, g, b)
+        })
+        .collect();
+    let (p, n) = (split(&g.p), split(&g.n));
+    let (pos, nor) = (
+        SoaVec3::new(&p[0], &p[1], &p[2]),
+        SoaVec3::new(&n[0], &n[1], &n[2]),
+    );
+    let (ka, kd, ks) = (split(&g.ka), split(&g.kd), split(&g.ks));
+    let surface = SoaSurface {
+        ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
+        diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
+        specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
+        shininess: &g.s,
+    };
+    // The same reflectances as f32 surfaces: the surface's, and the material's, times the texel.
+    let times = |v: &[Vec3]| {
+        split(
+            &v.iter()
+                .zip(&decoded)
+                .map(|(a, d)| *a * *d)
+                .collect::<Vec<_>>(),
+        )
+    };
+    let (ka_t, kd_t) = (times(&g.ka), times(&g.kd));
+    let (ma, md) = (
+        times(&vec![base.ambient(); len]),
+        times(&vec![base.diffuse(); len]),
+    );
+    let ms = split(&vec![base.specular(); len]);
+    let s_base = vec![base.shininess(); len];
+    let with_texels = SoaSurface {
+        ambient: SoaVec3::new(&ka_t[0], &ka_t[1], &ka_t[2]),
+        diffuse: SoaVec3::new(&kd_t[0], &kd_t[1], &kd_t[2]),
+        ..surface
+    };
+    let material_texels = SoaSurface {
+        ambient: SoaVec3::new(&ma[0], &ma[1], &ma[2]),
+        diffuse: SoaVec3::new(&md[0], &md[1], &md[2]),
+        specular: SoaVec3::new(&ms[0], &ms[1], &ms[2]),
+        shininess: &s_base,
+    };
+    let cases = [
+        (
+            GBuffer::new(pos, nor)
+                .with_surface(surface)
+                .with_albedo_srgb8(&texels),
+            GBuffer::new(pos, nor).with_surface(with_texels),
+            "surface",
+        ),
+        (
+            GBuffer::new(pos, nor).with_albedo_srgb8(&texels),
+            GBuffer::new(pos, nor).with_surface(material_texels),
+            "material",
+        ),
+    ];
+    for level in Level::supported() {
+        for (textured, want, what) in &cases {
+            let shade = |g: &GBuffer<'_>| {
+                let (mut r, mut gr, mut b) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
+                let k = phong::shade_gbuffer_with_level(
+                    level,
+                    &model,
+                    &base,
+                    &scene,
+                    g,
+                    SoaRgb::new(&mut r, &mut gr, &mut b),
+                )
+                .unwrap();
+                assert_eq!(k, len);
+                (r, gr, b)
+            };
+            assert_eq!(
+                shade(textured),
+                shade(want),
+                "{level}: albedo over the {what}"
+            );
+        }
+    }
+}

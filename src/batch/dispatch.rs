@@ -23,7 +23,7 @@ pub(super) fn run_level<M: BatchModel, L: BatchLight>(
     out: SoaRgb<'_>,
 ) -> usize {
     // Without per-point inputs: the plain kernel (see `kernel::run_inputs`).
-    let plain = inputs.surface.is_none() && inputs.visibility.is_none();
+    let plain = !inputs.per_point_surface() && inputs.visibility.is_none();
     #[cfg(target_arch = "x86_64")]
     {
         use super::{avx512, x86};

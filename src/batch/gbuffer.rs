@@ -55,7 +55,8 @@ impl<'a> SoaSurface<'a> {
 }
 
 /// What a deferred renderer has per pixel: positions and normals, and optionally a per-point
-/// surface, per-light visibilities (shadow factors) and a coverage mask.
+/// surface, 8-bit sRGB albedo texels ([`with_albedo_srgb8`](Self::with_albedo_srgb8)),
+/// per-light visibilities (shadow factors) and a coverage mask.
 ///
 /// **Coverage:** with [`with_coverage`](Self::with_coverage), only the points whose mask value is
 /// `true` are read and shaded; at the others (the background) every input is left unread, so it
@@ -87,6 +88,9 @@ pub struct GBuffer<'a> {
     pub visibility: Option<&'a [f32]>,
     /// Which points to shade (see the type's docs); `None`: every point.
     pub coverage: Option<&'a [bool]>,
+    /// Per-point 8-bit sRGB texels (see [`with_albedo_srgb8`](Self::with_albedo_srgb8)); `None`:
+    /// none.
+    pub albedo: Option<&'a [[u8; 4]]>,
 }
 
 impl<'a> GBuffer<'a> {
@@ -99,6 +103,7 @@ impl<'a> GBuffer<'a> {
             surface: None,
             visibility: None,
             coverage: None,
+            albedo: None,
         }
     }
 
@@ -147,11 +152,44 @@ impl<'a> GBuffer<'a> {
         }
     }
 
-    /// The number of points: the shortest of the position, normal, surface and coverage slices.
+    /// The same G-buffer with a texture's 8-bit sRGB texels per point, as a renderer keeps them
+    /// (`[r, g, b, a]`, alpha ignored): each is decoded in the kernel by
+    /// [`srgb8_to_linear`](crate::srgb8_to_linear) (a table, no `powf`) and multiplies the
+    /// point's ambient and diffuse reflectances, the surface's where there is one (so its
+    /// `ambient` can carry an occlusion factor), else the material's. With a white material this
+    /// is LearnOpenGL's `texture(material.diffuse, uv)` for both terms.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, GBuffer, LightColors, Material, Phong, Scene, SoaRgb, SoaVec3, Viewer};
+    ///
+    /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+    /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+    /// let white = Material::try_from_color(Vec3::ONE, 32.0)?;
+    /// let (zero, one) = ([0.0; 1], [1.0; 1]);
+    /// let texel = [[188, 255, 0, 255]]; // sRGB 188 is about 0.5 linear
+    /// let g = GBuffer::new(SoaVec3::new(&zero, &zero, &zero), SoaVec3::new(&zero, &zero, &one))
+    ///     .with_albedo_srgb8(&texel);
+    /// let mut frame = [[0u8; 4]; 1];
+    /// phong::shade_gbuffer_rgba8(&Phong::default(), &white, &scene, &g, &mut frame);
+    /// assert_eq!(frame[0], [188, 255, 0, 255]); // lit head-on: the texel itself
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    pub fn with_albedo_srgb8(self, albedo: &'a [[u8; 4]]) -> Self {
+        GBuffer {
+            albedo: Some(albedo),
+            ..self
+        }
+    }
+
+    /// The number of points: the shortest of the position, normal, surface, albedo and coverage
+    /// slices.
     #[must_use]
     pub fn len(&self) -> usize {
         let n = self.positions.len().min(self.normals.len());
         let n = self.surface.map_or(n, |s| n.min(s.len()));
+        let n = self.albedo.map_or(n, |a| n.min(a.len()));
         self.coverage.map_or(n, |c| n.min(c.len()))
     }
 
@@ -172,7 +210,7 @@ impl<'a> GBuffer<'a> {
 
     /// The kernel's view of the per-point inputs, and how many points can be shaded: 0 when the
     /// visibility slice is too short for `lights` planes.
-    pub(super) fn inputs(&self, lights: usize) -> (PointInputs<'a>, usize) {
+    pub(super) fn inputs(&self, lights: usize, material: &Material) -> (PointInputs<'a>, usize) {
         let stride = self.positions.x.len();
         let n = self.len();
         let short = self
@@ -182,8 +220,22 @@ impl<'a> GBuffer<'a> {
             !short,
             "GBuffer: visibility needs {lights} × {stride} values (one plane per light)"
         );
+        let (ka, kd, ks) = (material.ambient(), material.diffuse(), material.specular());
         let inputs = PointInputs {
             surface: self.surface.map(|s| s.slices()),
+            albedo: self.albedo,
+            base: [
+                ka.x,
+                ka.y,
+                ka.z,
+                kd.x,
+                kd.y,
+                kd.z,
+                ks.x,
+                ks.y,
+                ks.z,
+                material.shininess(),
+            ],
             visibility: self.visibility.map(|v| (v, stride)),
         };
         (inputs, if short { 0 } else { n })
@@ -346,7 +398,7 @@ pub(super) fn run<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    let (inputs, n) = gbuffer.inputs(scene.lights.len());
+    let (inputs, n) = gbuffer.inputs(scene.lights.len(), material);
     debug_assert!(
         out.len() == n,
         "shade_gbuffer: the output must have the G-buffer's length"
@@ -386,7 +438,7 @@ fn encoded<M: BatchModel, L: BatchLight, T>(
     out: &mut [T],
     pack: impl Fn([u8; 3]) -> T,
 ) -> usize {
-    let (inputs, n) = gbuffer.inputs(scene.lights.len());
+    let (inputs, n) = gbuffer.inputs(scene.lights.len(), material);
     debug_assert!(
         out.len() == n,
         "shade_gbuffer_*8: the output must have the G-buffer's length"

@@ -353,11 +353,17 @@ fn pow_lanes(plan: PowPlan, flush: f32, x: Lanes) -> Lanes {
 }
 
 /// The inputs of a call beyond positions and normals, as slices over the call's points: a
-/// G-buffer's per-point surface and per-light visibility (see `shade_gbuffer`).
+/// G-buffer's per-point surface, 8-bit sRGB albedo and per-light visibility (see
+/// `shade_gbuffer`).
 #[derive(Clone, Copy, Default)]
 pub(crate) struct PointInputs<'a> {
     /// `Ka` (x, y, z), `Kd`, `Ks`, then the shininess: ten slices.
     pub(crate) surface: Option<[&'a [f32]; 10]>,
+    /// 8-bit sRGB texels whose decoded colour multiplies `Ka` and `Kd` (of `surface`, or of
+    /// `base` without one).
+    pub(crate) albedo: Option<&'a [[u8; 4]]>,
+    /// The call's material as the ten surface values, for an albedo without a surface.
+    pub(crate) base: [f32; 10],
     /// Light `j`'s visibility at point `i` is `visibility[j * stride + i]`.
     pub(crate) visibility: Option<(&'a [f32], usize)>,
 }
@@ -367,13 +373,20 @@ impl PointInputs<'_> {
     pub(crate) fn from(&self, start: usize) -> Self {
         PointInputs {
             surface: self.surface.map(|s| s.map(|a| &a[start..])),
+            albedo: self.albedo.map(|a| &a[start..]),
+            base: self.base,
             visibility: self.visibility.map(|(v, stride)| (&v[start..], stride)),
         }
     }
 
+    /// Whether the points have surfaces of their own (a surface or an albedo).
+    pub(crate) fn per_point_surface(&self) -> bool {
+        self.surface.is_some() || self.albedo.is_some()
+    }
+
     /// Light `j`'s visibilities at points `i..i + count` (1 without shadows).
     #[inline(always)]
-    fn visibility(&self, j: usize, i: usize, count: usize) -> Lanes {
+    pub(crate) fn visibility(&self, j: usize, i: usize, count: usize) -> Lanes {
         match self.visibility {
             Some((v, stride)) => {
                 let mut a = [1.0f32; W];
@@ -384,13 +397,29 @@ impl PointInputs<'_> {
         }
     }
 
-    /// The raw surface values at points `i..i + count`.
+    /// The raw surface values at points `i..i + count`: the surface's (or the material's), with
+    /// `Ka` and `Kd` multiplied by the decoded albedo where there is one. `None` without either.
     #[inline(always)]
-    fn surface(&self, i: usize, count: usize) -> Option<[Lanes; 10]> {
-        let slices = self.surface?;
-        let mut raw = [[0.0f32; W]; 10];
-        for (r, a) in raw.iter_mut().zip(slices) {
-            r[..count].copy_from_slice(&a[i..i + count]);
+    pub(crate) fn surface(&self, i: usize, count: usize) -> Option<[Lanes; 10]> {
+        let mut raw = match self.surface {
+            Some(slices) => {
+                let mut raw = [[0.0f32; W]; 10];
+                for (r, a) in raw.iter_mut().zip(slices) {
+                    r[..count].copy_from_slice(&a[i..i + count]);
+                }
+                raw
+            }
+            None if self.albedo.is_some() => self.base.map(|b| [b; W]),
+            None => return None,
+        };
+        if let Some(albedo) = self.albedo {
+            for (lane, texel) in albedo[i..i + count].iter().enumerate() {
+                for c in 0..3 {
+                    let x = crate::srgb8_to_linear(texel[c]);
+                    raw[c][lane] *= x;
+                    raw[3 + c][lane] *= x;
+                }
+            }
         }
         Some(raw)
     }
@@ -914,7 +943,7 @@ where
     L: BatchLight,
     R: Fn(Lanes) -> Lanes,
 {
-    match (inputs.surface.is_some(), inputs.visibility.is_some()) {
+    match (inputs.per_point_surface(), inputs.visibility.is_some()) {
         (false, _) if k.folded => {
             run_with::<M, L, R, true, false, true>(k, pos, nor, inputs, out, rsqrt)
         }

@@ -182,7 +182,7 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
     if scratch.len() < lights || width == 0 || tile == 0 || gbuffer.visibility.is_some() {
         return super::gbuffer::run(level, model, material, scene, gbuffer, out);
     }
-    let (inputs, n) = gbuffer.inputs(lights);
+    let (inputs, n) = gbuffer.inputs(lights, material);
     debug_assert!(
         out.len() == n,
         "shade_gbuffer_tiled: the output must have the G-buffer's length"
