@@ -39,7 +39,8 @@ use glam::{Mat3, Vec3};
 use phong::{
     Attenuation, BlinnPhong, DirectionalLight, GBuffer, Incidence, Lambert, Level, Light,
     LightColors, Material, Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel,
-    Scene, Shader, SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, Viewer,
+    Scene, Shader, SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface,
+    TileCulling, Viewer,
 };
 
 /// `v` rounded to `f32` with each component saturated to `±f32::MAX`: the generators' arithmetic
@@ -1051,7 +1052,11 @@ fn gbuffer(r: &mut Rng, c: &mut Check) {
             })
             .collect::<Vec<f32>>()
     };
-    let buffer = GBuffer::new(soa(&p), soa(&q))
+    let texels: Vec<[u8; 4]> = (0..n)
+        .map(|_| [0; 4].map(|_: u8| r.below(256) as u8))
+        .collect();
+    let coverage: Vec<bool> = (0..n).map(|_| r.below(4) != 0).collect();
+    let mut buffer = GBuffer::new(soa(&p), soa(&q))
         .with_surface(SoaSurface {
             ambient: soa(&k[0..3]),
             diffuse: soa(&k[3..6]),
@@ -1059,7 +1064,56 @@ fn gbuffer(r: &mut Rng, c: &mut Check) {
             shininess: &s,
         })
         .with_visibility(&vis);
+    if r.coin() {
+        buffer = buffer.with_albedo_srgb8(&texels);
+    }
+    // Tile culling (which does not cull with visibility planes) over any image width, tile and
+    // threshold, with a coverage mask half the time: covered points finite and ≥ 0, the others
+    // untouched.
+    let tiled = GBuffer {
+        visibility: None,
+        coverage: r.coin().then_some(&coverage[..]),
+        ..buffer
+    };
+    let culling = TileCulling {
+        width: 1 + r.below(n as u64 + 3) as usize,
+        tile: 1 + r.below(9) as usize,
+        threshold: match r.below(4) {
+            0 => 0.0,
+            1 => r.hard(),
+            _ => r.range(0.0, 0.1),
+        },
+    };
     for level in Level::supported() {
+        let (mut tr, mut tg, mut tb) = (vec![-1.0; n], vec![-1.0; n], vec![-1.0; n]);
+        let mut scratch = lights.clone();
+        phong::shade_gbuffer_tiled_with_level(
+            level,
+            &model,
+            &material,
+            &scene,
+            &tiled,
+            culling,
+            &mut scratch,
+            SoaRgb::new(&mut tr, &mut tg, &mut tb),
+        )
+        .unwrap();
+        c.count("shade_gbuffer_tiled_with_level", n as u64);
+        for i in 0..n {
+            let out = Vec3::new(tr[i], tg[i], tb[i]);
+            let ok = if tiled.coverage.is_none_or(|m| m[i]) {
+                finite_nonneg(out)
+            } else {
+                out == Vec3::splat(-1.0)
+            };
+            c.expect("shade_gbuffer_tiled_with_level", ok, || {
+                format!("{level:?} {model:?} {culling:?} {lights:?} point {i} -> {out:?}")
+            });
+        }
+        let mut xrgb = vec![0u32; n];
+        phong::shade_gbuffer_xrgb8_with_level(level, &model, &material, &scene, &buffer, &mut xrgb)
+            .unwrap();
+        c.count("shade_gbuffer_xrgb8_with_level", n as u64);
         let (mut or, mut og, mut ob) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         phong::shade_gbuffer_with_level(
             level,
@@ -1088,6 +1142,10 @@ fn gbuffer(r: &mut Rng, c: &mut Check) {
                 rgba[i] == [r8, g8, b8, 255],
                 || format!("{level:?} point {i}: {:?} against {out:?}", rgba[i]),
             );
+            let x = u32::from(r8) << 16 | u32::from(g8) << 8 | u32::from(b8);
+            c.expect("shade_gbuffer_xrgb8_with_level", xrgb[i] == x, || {
+                format!("{level:?} point {i}: {:#08x} against {out:?}", xrgb[i])
+            });
         }
     }
 }

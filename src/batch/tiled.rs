@@ -191,12 +191,14 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
     let (pos, nor) = gbuffer.prefix(n);
     let covered = |i: usize| gbuffer.coverage.is_none_or(|c| c[i]);
     let rows = n.div_ceil(width);
+    // A row holds at most `n` points, and every sum below stays at most `n + width` (no overflow
+    // for any `width` and `tile`).
     for ty in (0..rows).step_by(tile) {
-        for tx in (0..width).step_by(tile) {
+        for tx in (0..width.min(n)).step_by(tile) {
             // The tile's row spans, clipped to the image and to the points there are.
-            let spans = (ty..rows.min(ty + tile)).map(|y| {
-                let start = (y * width + tx).min(n);
-                start..(y * width + width.min(tx + tile)).min(n)
+            let spans = (ty..rows.min(ty.saturating_add(tile))).map(|y| {
+                let row = y * width;
+                (row + tx).min(n)..(row + width.min(tx.saturating_add(tile))).min(n)
             });
             let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
             for span in spans.clone() {
