@@ -620,17 +620,10 @@ fn chunked_covered<M: BatchModel, L: BatchLight, T>(
             continue;
         };
         let covered = &coverage[k * CHUNK..k * CHUNK + len];
+        let inputs = inputs.from(k * CHUNK);
         for run in covered_runs(covered) {
-            shading.shade_inputs(
-                pos.range(run.clone()),
-                nor.range(run.clone()),
-                &inputs.from(k * CHUNK + run.start),
-                SoaRgb::new(
-                    &mut r[run.clone()],
-                    &mut g[run.clone()],
-                    &mut b[run.clone()],
-                ),
-            );
+            let mut rgb = SoaRgb::new(&mut *r, &mut *g, &mut *b);
+            shading.shade_range(pos, nor, &inputs, &mut rgb, run.clone());
             for j in run {
                 out[j] = pack(crate::linear_to_srgb8(Vec3::new(r[j], g[j], b[j])));
             }
@@ -735,6 +728,28 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
     /// Shades the common prefix of the slices; returns its length.
     fn shade(&self, pos: SoaVec3<'_>, nor: SoaVec3<'_>, out: SoaRgb<'_>) -> usize {
         self.shade_inputs(pos, nor, &kernel::PointInputs::default(), out)
+    }
+
+    /// Points `run` of the slices and of `inputs`, into the same points of `out` (the others
+    /// untouched); returns the run's length.
+    fn shade_range(
+        &self,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &kernel::PointInputs<'_>,
+        out: &mut SoaRgb<'_>,
+        run: core::ops::Range<usize>,
+    ) -> usize {
+        self.shade_inputs(
+            pos.range(run.clone()),
+            nor.range(run.clone()),
+            &inputs.from(run.start),
+            SoaRgb::new(
+                &mut out.r[run.clone()],
+                &mut out.g[run.clone()],
+                &mut out.b[run],
+            ),
+        )
     }
 
     /// [`shade`](Self::shade) with per-point inputs over at least as many points.

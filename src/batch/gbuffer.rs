@@ -414,17 +414,9 @@ pub(super) fn run<M: BatchModel, L: BatchLight>(
             SoaRgb::new(&mut out.r[..n], &mut out.g[..n], &mut out.b[..n]),
         );
     };
+    let mut out = out;
     for run in covered_runs(&coverage[..n]) {
-        shading.shade_inputs(
-            pos.range(run.clone()),
-            nor.range(run.clone()),
-            &inputs.from(run.start),
-            SoaRgb::new(
-                &mut out.r[run.clone()],
-                &mut out.g[run.clone()],
-                &mut out.b[run],
-            ),
-        );
+        shading.shade_range(pos, nor, &inputs, &mut out, run);
     }
     n
 }

@@ -517,6 +517,33 @@ fn saturate(x: f32) -> f32 {
     math::min_or(x, math::MAX)
 }
 
+/// `q − p` per lane and its squared length; lanes whose squared length leaves `[LO, HI]` are
+/// marked in `bad` for the scalar path.
+#[inline(always)]
+fn offset_to(q: Vec3, p: [&Lanes; 3], bad: &mut Lanes) -> ([Lanes; 3], Lanes) {
+    let [px, py, pz] = p;
+    let dx = lanes!(|i| q.x - px[i]);
+    let dy = lanes!(|i| q.y - py[i]);
+    let dz = lanes!(|i| q.z - pz[i]);
+    let ll = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+    *bad = lanes!(|i| if ll[i] >= LO && ll[i] <= HI {
+        bad[i]
+    } else {
+        1.0
+    });
+    ([dx, dy, dz], ll)
+}
+
+/// `d · inv` per component and lane.
+#[inline(always)]
+fn scaled([dx, dy, dz]: &[Lanes; 3], inv: &Lanes) -> (Lanes, Lanes, Lanes) {
+    (
+        lanes!(|i| dx[i] * inv[i]),
+        lanes!(|i| dy[i] * inv[i]),
+        lanes!(|i| dz[i] * inv[i]),
+    )
+}
+
 /// Below this `2 + 2 L·V` (an angle between `L` and `V` above about 174°) the Blinn-Phong lane is
 /// re-shaded by the scalar path: the cosine form's relative error there, about
 /// `2e-7 / (2 + 2 L·V)` in `(N·H)²`, times `s/2` in the lobe, would otherwise reach the 8-bit
@@ -556,21 +583,8 @@ where
 
     let (vx, vy, vz) = match k.view {
         ViewK::At(e) => {
-            let dx = lanes!(|i| e.x - px[i]);
-            let dy = lanes!(|i| e.y - py[i]);
-            let dz = lanes!(|i| e.z - pz[i]);
-            let vv = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-            bad = lanes!(|i| if vv[i] >= LO && vv[i] <= HI {
-                bad[i]
-            } else {
-                1.0
-            });
-            let inv = rsqrt(vv);
-            (
-                lanes!(|i| dx[i] * inv[i]),
-                lanes!(|i| dy[i] * inv[i]),
-                lanes!(|i| dz[i] * inv[i]),
-            )
+            let (d, vv) = offset_to(e, [px, py, pz], &mut bad);
+            scaled(&d, &rsqrt(vv))
         }
         ViewK::Infinite(v) => ([v.x; W], [v.y; W], [v.z; W]),
     };
@@ -605,15 +619,7 @@ where
                 position: q,
                 coefficients: [c0, c1, c2],
             } => {
-                let dx = lanes!(|i| q.x - px[i]);
-                let dy = lanes!(|i| q.y - py[i]);
-                let dz = lanes!(|i| q.z - pz[i]);
-                let ll = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-                bad = lanes!(|i| if ll[i] >= LO && ll[i] <= HI {
-                    bad[i]
-                } else {
-                    1.0
-                });
+                let (offset, ll) = offset_to(q, [px, py, pz], &mut bad);
                 let inv = rsqrt(ll);
                 let d = lanes!(|i| ll[i] * inv[i]);
                 let den = lanes!(|i| c0 + d[i] * (c1 + c2 * d[i]));
@@ -621,12 +627,8 @@ where
                 // `Attenuation::factor`: such lanes go to the scalar path.
                 bad = lanes!(|i| if den[i] < f32::INFINITY { bad[i] } else { 1.0 });
                 let att = lanes!(|i| 1.0 / math::max_or(den[i], Attenuation::MIN_DENOMINATOR));
-                (
-                    lanes!(|i| dx[i] * inv[i]),
-                    lanes!(|i| dy[i] * inv[i]),
-                    lanes!(|i| dz[i] * inv[i]),
-                    att,
-                )
+                let (lx, ly, lz) = scaled(&offset, &inv);
+                (lx, ly, lz, att)
             }
             LaneLight::Falloff {
                 position: q, spot, ..
@@ -634,22 +636,9 @@ where
                 // `LightSource::sample`'s own operations: the direction and distance of
                 // `direction_and_distance` (an exact square root, then `v · (1/d)`), the factor
                 // of `Attenuation::factor` (as `FlatAttenuation`) times the spot factor.
-                let dx = lanes!(|i| q.x - px[i]);
-                let dy = lanes!(|i| q.y - py[i]);
-                let dz = lanes!(|i| q.z - pz[i]);
-                let ll = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-                bad = lanes!(|i| if ll[i] >= LO && ll[i] <= HI {
-                    bad[i]
-                } else {
-                    1.0
-                });
+                let (offset, ll) = offset_to(q, [px, py, pz], &mut bad);
                 let d = lanes!(|i| math::sqrt(ll[i]));
-                let inv = lanes!(|i| 1.0 / d[i]);
-                let (lx, ly, lz) = (
-                    lanes!(|i| dx[i] * inv[i]),
-                    lanes!(|i| dy[i] * inv[i]),
-                    lanes!(|i| dz[i] * inv[i]),
-                );
+                let (lx, ly, lz) = scaled(&offset, &lanes!(|i| 1.0 / d[i]));
                 let flat = light.flat;
                 let att = lanes!(|i| flat.factor(d[i]));
                 let att = match spot {

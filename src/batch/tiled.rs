@@ -167,7 +167,7 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
     gbuffer: &GBuffer<'_>,
     culling: TileCulling,
     scratch: &mut [L],
-    out: SoaRgb<'_>,
+    mut out: SoaRgb<'_>,
 ) -> usize {
     let lights = scene.lights.len();
     debug_assert!(
@@ -222,26 +222,17 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
                 ..*scene
             };
             let shading = Shading::with_inputs(level, model, material, &tile_scene, &inputs);
-            let mut shade_run = |run: core::ops::Range<usize>| {
-                shading.shade_inputs(
-                    pos.range(run.clone()),
-                    nor.range(run.clone()),
-                    &inputs.from(run.start),
-                    SoaRgb::new(
-                        &mut out.r[run.clone()],
-                        &mut out.g[run.clone()],
-                        &mut out.b[run],
-                    ),
-                );
-            };
             for span in spans {
                 match gbuffer.coverage {
                     Some(c) => {
                         for r in covered_runs(&c[span.clone()]) {
-                            shade_run(span.start + r.start..span.start + r.end);
+                            let run = span.start + r.start..span.start + r.end;
+                            shading.shade_range(pos, nor, &inputs, &mut out, run);
                         }
                     }
-                    None => shade_run(span),
+                    None => {
+                        shading.shade_range(pos, nor, &inputs, &mut out, span);
+                    }
                 }
             }
         }
