@@ -732,12 +732,12 @@ fn main() {
          The last pair reads the texels as a renderer keeps them, 8-bit sRGB \
          (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a 256-entry table), in place of \
          linear `f32` reflectances.\n\n\
-         Why it is slower than one material: the AVX-512 level's intrinsics kernel has no \
-         per-point inputs, so a G-buffer call there runs the one portable source compiled for \
-         AVX-512, about 2.5× slower than the intrinsics on plain calls (see the levels table: \
-         it is the AVX2 level's speed); a per-point surface also keeps the three light sums \
-         apart per channel (nine accumulators) instead of the one folded sum a single material \
-         allows; and the 8-bit encoding adds its table lookups (section above).\n\n\
+         Why it is slower than one material: a per-point surface is sanitised and its exponent \
+         split per lane (scalar code per chunk), its `Auto` pow runs the squaring ladder over the \
+         bits some lane has and the polynomial where any lane's shininess is fractional, it keeps \
+         the three light sums apart per channel (nine accumulators) instead of the one folded sum \
+         a single material allows, and the 8-bit encoding adds its table lookups (section \
+         above). Every level runs its own instructions for these calls (the one kernel source).\n\n\
          Accuracy on the 2²⁰ accuracy points, each with its own random texel, specular strength, \
          shininess in [2, 128] and shadow factor in [0, 1], against the same equation in `f64`: \
          max abs error {:.1e}, 8-bit mismatch {:.2e}, to compare with the one-material batch \
@@ -814,19 +814,16 @@ fn main() {
         md,
         "## aarch64: tested, not measured\n\n\
          On aarch64 (Apple silicon, Graviton, Raspberry Pi) the batch path runs the `Neon` level: \
-         the portable kernel, which LLVM vectorises for NEON (part of the aarch64 baseline), with \
+         the one kernel source on four `float32x4_t` per 16 lanes, with fused multiply-adds and \
          NEON's inverse square root (`frsqrte` and two Newton steps by `frsqrts`) in place of a \
          square root and a division per lane. CI cross-compiles the crate's whole test suite for \
          `aarch64-unknown-linux-gnu` and runs it under qemu, so the batch-vs-scalar comparisons \
          run there at the `Portable` and `Neon` levels (a `Neon` level with one Newton step \
          instead of two fails 8 of the 17 batch tests). Nothing here measures aarch64 speed: \
          qemu's timings say nothing about a real core, and the qemu here has no plugin support \
-         for counting executed instructions. Counted statically instead \
-         (`aarch64-linux-gnu-objdump -d` of the release test binary of tests/batch.rs, each \
-         compiled instance of the level's entry function, one per model and light type): the \
-         `Portable` instances hold 104–108 `fsqrt` and 226–229 `fdiv` each, the `Neon` instances \
-         no `fsqrt`, 114 `fdiv`, 104 `frsqrte` and 208 `frsqrts`, in about the same total \
-         (46.6k–47.2k against 46.6k–47.5k instructions).\n"
+         for counting executed instructions. (Static counts of the earlier, auto-vectorised \
+         kernel were recorded before it was replaced by the one source; they have not been \
+         redone for this kernel.)\n"
     );
 
     // ---- Strategies.

@@ -168,19 +168,14 @@
 //! # Ok::<(), phong::PhongError>(())
 //! ```
 
-#[cfg(target_arch = "x86_64")]
-mod avx512;
 mod dispatch;
 mod gbuffer;
 mod kernel;
 mod level;
-#[cfg(target_arch = "aarch64")]
-mod neon;
 mod prepare;
+mod simd;
 mod soa;
 mod tiled;
-#[cfg(target_arch = "x86_64")]
-mod x86;
 
 pub use gbuffer::{
     GBuffer, SoaSurface, shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level,

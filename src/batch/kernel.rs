@@ -1,37 +1,43 @@
-//! The portable batch kernel: one source, 16 points at a time, compiled for the `Portable`,
-//! `Sse2` and `Avx2` levels, and for `Avx512` where a call has per-point inputs (a G-buffer's
-//! surfaces or visibilities). The `Avx512` level's plain calls run the intrinsics kernel in
-//! `avx512.rs`, which follows the same algorithm.
+//! The batch kernel: one source, 16 points at a time, generic over the level's primitives
+//! ([`Simd`]), so every level (`Portable`, `Sse2`, `Avx2`, `Avx512`, `Neon`) runs the same
+//! algorithm, and every call (per-point surfaces, shadows, every light) runs at every level.
 //!
-//! Every quantity is a `[f32; 16]` and every operation a loop over the 16 lanes with no
-//! cross-lane dependency, so LLVM turns each into two AVX2 instructions or four SSE2 ones. Work per point and light, with unnormalised `L = P_light − p`, `V = eye − p`:
+//! Work per point and light, with unnormalised `n`, `L = P_light − p`, `V = eye − p`, and inverse
+//! norms `rn = rsqrt(n·n)`, `rl = rsqrt(L·L)`, `rv = rsqrt(V·V)` (the level's own estimate and
+//! Newton steps, or the exact quotient):
 //!
 //! ```text
-//! N = n·rsqrt(n·n),  V̂ = V·rsqrt(V·V),  L̂ = L·rsqrt(L·L),  d = (L·L)·rsqrt(L·L)
+//! N·L = (n·L)·rn·rl,  N·V = (n·V)·rn·rv,  L·V = (L·V)·rl·rv,  d = (L·L)·rl
 //! f     = 1 / max(c + d(l + q d), MIN_DENOMINATOR)
-//! Phong: R·V = 2(N·L̂)(N·V̂) − L̂·V̂                      (no reflect vector)
-//! Blinn: (N·H)² = max(N·L̂ + N·V̂, 0)² / (2 + 2 L̂·V̂)    (no halfway vector, no sqrt)
+//! Phong: R·V = 2(N·L)(N·V) − L·V                      (no reflect vector)
+//! Blinn: (N·H)² = max(N·L + N·V, 0)² / (2 + 2 L·V)    (no halfway vector, no sqrt)
 //! ```
+//!
+//! Spot lights and the other falloffs take their direction, distance and factor per lane by the
+//! scalar path's own operations ([`falloff`]), so their factor is `shade`'s bit for bit.
 //!
 //! The colours follow the saturation rule in the module docs of `batch`: per channel three sums
 //! over the lights, `Ia + Σ f·La`, `Σ f·max(N·L, 0)·Ld` and `Σ min(f·w, MAX)·Ls` (`w` the gated,
 //! normalised specular lobe), each saturated and then multiplied by the material's colour once.
 //!
-//! Among the levels that compile this source, the inverse square root is the one level-specific
-//! operation (passed in as `rsqrt`). Points the
-//! fast path cannot represent (a squared norm outside `[1e-30, 1e30]`: a zero or huge normal, the
-//! viewer or a light at the point, huge coordinates) are flagged and shaded again by the scalar
+//! Points the fast path cannot represent (a squared norm outside `[1e-30, 1e30]`: a zero or huge
+//! normal, the viewer or a light at the point, huge coordinates; an overflowing attenuation
+//! denominator; Blinn-Phong near `L = −V`) are flagged and shaded again by the scalar
 //! [`shade`](crate::shade), so the batch has its degenerate-case results exactly.
 
 use glam::Vec3;
 
 use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
+use super::simd::Simd;
 use super::soa::{SoaRgb, SoaVec3};
 use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
+use crate::light::SpotLight;
 use crate::material::Material;
 use crate::math;
-use crate::pow::{Poly, PowPlan, auto_split, lobe_pow, poly_pow};
+use crate::pow::{
+    EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, auto_split, lobe_pow,
+};
 use crate::shade::{Scene, Viewer};
 use crate::shader::Shader;
 use crate::surface::Surface;
@@ -46,17 +52,6 @@ pub(crate) type Lanes = [f32; W];
 /// directly).
 const LO: f32 = 1.0e-30;
 const HI: f32 = 1.0e30;
-
-/// `[e(0), e(1), …, e(15)]`.
-macro_rules! lanes {
-    (|$i:ident| $e:expr) => {{
-        let mut r = [0.0f32; W];
-        for $i in 0..W {
-            r[$i] = $e;
-        }
-        r
-    }};
-}
 
 /// The viewer as the kernel sees it.
 #[derive(Clone, Copy, Debug)]
@@ -214,9 +209,6 @@ pub(crate) struct Setup<'a, M, L> {
     /// The first lights, prepared; all of them when `all_prepared`.
     pub(crate) prepared: [PreparedLight; PREPARED],
     pub(crate) all_prepared: bool,
-    /// Whether a light is a [`LaneLight::Falloff`], which only this portable kernel evaluates
-    /// (the `Avx512` level then runs it instead of the intrinsics kernel).
-    pub(crate) portable_only: bool,
 }
 
 impl<M, L: BatchLight> Setup<'_, M, L> {
@@ -258,14 +250,9 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
         let folded = cannot_overflow(scene, material, &lm);
         let ambient = crate::light::sanitize_colour(scene.ambient);
         let sat = Vec3::splat(math::MAX);
-        let portable_only = scene
-            .lights
-            .iter()
-            .any(|l| matches!(l.lane_light(), Some(LaneLight::Falloff { .. })));
         Setup {
             prepared,
             all_prepared: scene.lights.len() <= PREPARED,
-            portable_only,
             model,
             material,
             scene,
@@ -298,9 +285,10 @@ pub(crate) fn flush_below(plan: PowPlan) -> f32 {
 
 #[inline(always)]
 fn load(s: &[f32], i: usize) -> Lanes {
-    let mut a = [0.0f32; W];
-    a.copy_from_slice(&s[i..i + W]);
-    a
+    match <&Lanes>::try_from(&s[i..i + W]) {
+        Ok(a) => *a,
+        Err(_) => [0.0; W], // unreachable: the range is W long
+    }
 }
 
 #[inline(always)]
@@ -308,48 +296,6 @@ pub(crate) fn load_tail(s: &[f32], i: usize, count: usize) -> Lanes {
     let mut a = [0.0f32; W];
     a[..count].copy_from_slice(&s[i..i + count]);
     a
-}
-
-/// `x^n` per lane by repeated squaring, bases below `flush` first set to 0.
-#[inline(always)]
-fn squaring_lanes(x: &Lanes, flush: f32, n: u32) -> Lanes {
-    let mut base = lanes!(|i| if x[i] < flush { 0.0 } else { x[i] });
-    let mut acc = [1.0f32; W];
-    let mut e = n;
-    while e > 0 {
-        if e & 1 == 1 {
-            acc = lanes!(|i| acc[i] * base[i]);
-        }
-        base = lanes!(|i| base[i] * base[i]);
-        e >>= 1;
-    }
-    acc
-}
-
-/// `exp2(s·log2 x)` per lane.
-#[inline(always)]
-fn poly_lanes(p: Poly, x: &Lanes, s: f32) -> Lanes {
-    match p {
-        Poly::P3 => lanes!(|i| poly_pow(Poly::P3, x[i], s)),
-        Poly::P5 => lanes!(|i| poly_pow(Poly::P5, x[i], s)),
-        Poly::P7 => lanes!(|i| poly_pow(Poly::P7, x[i], s)),
-    }
-}
-
-/// `x^s` per lane for bases in `[0, 1]`; 0 for `x ≤ 0`.
-#[inline(always)]
-fn pow_lanes(plan: PowPlan, flush: f32, x: Lanes) -> Lanes {
-    let r = match plan {
-        PowPlan::Exact { s } => lanes!(|i| lobe_pow(x[i], s)),
-        PowPlan::Squaring { n } => squaring_lanes(&x, flush, n),
-        PowPlan::Poly { s, poly } => poly_lanes(poly, &x, s),
-        PowPlan::Split { n, frac, poly } => {
-            let a = squaring_lanes(&x, flush, n);
-            let b = poly_lanes(poly, &x, frac);
-            lanes!(|i| a[i] * b[i])
-        }
-    };
-    lanes!(|i| if x[i] > 0.0 { r[i] } else { 0.0 })
 }
 
 /// The inputs of a call beyond positions and normals, as slices over the call's points: a
@@ -425,54 +371,195 @@ impl PointInputs<'_> {
     }
 }
 
-/// A chunk's per-point surface, sanitised as [`Shader::shade_surface`] does: reflectances, and
-/// each lane's specular scale and `Auto` split of its exponent (`auto_split`).
-pub(crate) struct SurfaceLanes {
-    ka: [Lanes; 3],
-    kd: [Lanes; 3],
-    ks: [Lanes; 3],
-    scale: Lanes,
-    whole: [u32; W],
-    frac: Lanes,
+/// `Σ c[k] t^k` by Estrin's scheme: pairs `c[2i] + c[2i+1]·t` first, then pairs of those with
+/// `t²`, `t⁴`, …; the dependency chain is `⌈log2 N⌉` multiply-adds deep instead of Horner's `N`,
+/// which matters because the chains of successive chunks are what limits this loop.
+#[inline(always)]
+fn poly<S: Simd, const N: usize>(s: S, t: S::V, c: &[f32; N]) -> S::V {
+    const { assert!(N <= 8, "poly: at most 8 coefficients") };
+    let mut cur = [s.splat(0.0); 8];
+    for (slot, &k) in cur.iter_mut().zip(c) {
+        *slot = s.splat(k);
+    }
+    let mut m = N;
+    let mut pw = t;
+    while m > 1 {
+        let half = m.div_ceil(2);
+        for j in 0..half {
+            cur[j] = if 2 * j + 1 < m {
+                s.mul_add(cur[2 * j + 1], pw, cur[2 * j])
+            } else {
+                cur[2 * j]
+            };
+        }
+        m = half;
+        pw = s.mul(pw, pw);
+    }
+    cur[0]
 }
 
-impl SurfaceLanes {
-    #[inline(always)]
-    fn new(lm: &LaneModel, raw: &[Lanes; 10]) -> Self {
-        let clean = |c: &Lanes| lanes!(|i| math::clamp_or_lo(c[i], 0.0, math::MAX));
-        let s = clean(&raw[9]);
-        let e = if lm.lobe == Lobe::Blinn {
-            lanes!(|i| 0.5 * s[i])
-        } else {
-            s
-        };
-        let norm = lm.normalization;
-        let scale = match lm.lobe {
-            Lobe::None => [0.0; W],
-            _ if !norm.is_normalized() => [1.0; W],
-            Lobe::Phong => lanes!(|i| norm.phong_factor(s[i])),
-            Lobe::Blinn => lanes!(|i| norm.blinn_factor(s[i])),
-        };
-        let mut whole = [0u32; W];
-        let mut frac = [0.0f32; W];
-        for i in 0..W {
-            (whole[i], frac[i]) = auto_split(e[i]);
+/// `log2 x` for `x ∈ (0, 1]` (as `pow::log2_poly`): `x = m·2^e` with `m ∈ [√½, √2)`, then
+/// `e + t·P(t)` with `t = m − 1`; subnormal `x` scaled by `2²⁴` first.
+#[inline(always)]
+fn log2<S: Simd, const N: usize>(s: S, x: S::V, c: &[f32; N]) -> S::V {
+    let sub = s.lt(x, s.splat(f32::MIN_POSITIVE));
+    let xs = s.select(sub, s.mul(x, s.splat(16_777_216.0)), x);
+    let bits = s.to_bits(xs);
+    let e = s.sar23(s.sub_i(bits, s.splat_i(0x3f35_04f3)));
+    let m = s.bits_to_f32(s.sub_i(bits, s.shl23(e)));
+    let t = s.sub(m, s.splat(1.0));
+    let ef = s.to_f32(e);
+    let ef = s.select(sub, s.sub(ef, s.splat(24.0)), ef);
+    s.mul_add(t, poly(s, t, c), ef)
+}
+
+/// `2^y` for `y ≤ 0`, 0 where `y < −100` (as `pow::poly_pow`'s): `y = r + f` with `r` the nearest
+/// integer (by the `1.5·2²³` trick), `2^f ≈ 1 + f·R(f)`, and `2^r` built in the exponent bits.
+#[inline(always)]
+fn exp2<S: Simd, const N: usize>(s: S, y: S::V, c: &[f32; N]) -> S::V {
+    let keep = s.ge(y, s.splat(-100.0));
+    let y = s.min(s.max(y, s.splat(-100.0)), s.splat(0.0));
+    let big = s.add(y, s.splat(12_582_912.0));
+    let r = s.sub(big, s.splat(12_582_912.0));
+    let ri = s.sub_i(s.to_bits(big), s.splat_i(0x4b40_0000));
+    let f = s.sub(y, r);
+    let q = s.mul_add(f, poly(s, f, c), s.splat(1.0));
+    let scale = s.bits_to_f32(s.shl23(s.add_i(ri, s.splat_i(127))));
+    s.keep(keep, s.mul(q, scale))
+}
+
+/// `exp2(e·log2 x)` per lane by the polynomial pair `p`, for `x ∈ (0, 1]`.
+#[inline(always)]
+fn poly_pow<S: Simd>(s: S, p: Poly, x: S::V, e: S::V) -> S::V {
+    match p {
+        Poly::P3 => exp2(s, s.mul(e, log2(s, x, &LOG2_3)), &EXP2_3),
+        Poly::P5 => exp2(s, s.mul(e, log2(s, x, &LOG2_5)), &EXP2_4),
+        Poly::P7 => exp2(s, s.mul(e, log2(s, x, &LOG2_7)), &EXP2_5),
+    }
+}
+
+/// `x^n` by repeated squaring, the same `n` in every lane; bases below `flush` first set to 0.
+#[inline(always)]
+fn squaring<S: Simd>(s: S, x: S::V, flush: f32, n: u32) -> S::V {
+    if n == 0 {
+        return s.splat(1.0);
+    }
+    let mut base = s.keep(s.ge(x, s.splat(flush)), x);
+    // x^n = (x^(2^z))^(n / 2^z) with z trailing zeros: z plain squarings first.
+    let z = n.trailing_zeros();
+    for _ in 0..z {
+        base = s.mul(base, base);
+    }
+    let mut acc = base;
+    let mut e = n >> (z + 1);
+    while e > 0 {
+        base = s.mul(base, base);
+        if e & 1 == 1 {
+            acc = s.mul(acc, base);
         }
-        SurfaceLanes {
-            ka: [clean(&raw[0]), clean(&raw[1]), clean(&raw[2])],
-            kd: [clean(&raw[3]), clean(&raw[4]), clean(&raw[5])],
-            ks: [clean(&raw[6]), clean(&raw[7]), clean(&raw[8])],
-            scale,
-            whole,
-            frac,
+        e >>= 1;
+    }
+    acc
+}
+
+/// `x^s` for bases in `[0, 1]` by the call's plan (the same in every lane); 0 for `x ≤ 0`.
+#[inline(always)]
+fn pow<S: Simd>(s: S, plan: PowPlan, flush: f32, x: S::V) -> S::V {
+    let r = match plan {
+        PowPlan::Exact { s: e } => {
+            let a = s.store(x);
+            s.load(&core::array::from_fn(|i| lobe_pow(a[i], e)))
+        }
+        PowPlan::Squaring { n } => squaring(s, x, flush, n),
+        PowPlan::Poly { s: e, poly } => poly_pow(s, poly, x, s.splat(e)),
+        PowPlan::Split { n, frac, poly } => s.mul(
+            squaring(s, x, flush, n),
+            poly_pow(s, poly, x, s.splat(frac)),
+        ),
+    };
+    s.keep(s.gt(x, s.splat(0.0)), r)
+}
+
+/// A chunk's per-point surface, sanitised as [`Shader::shade_surface`] does: reflectances, and
+/// each lane's specular scale and `Auto` split of its exponent (`auto_split`).
+pub(crate) struct SurfaceV<S: Simd> {
+    ka: [S::V; 3],
+    kd: [S::V; 3],
+    ks: [S::V; 3],
+    scale: S::V,
+    /// The whole exponent per lane (0 where it is fractional).
+    whole: S::I,
+    /// The fractional exponent per lane (0 where it is whole).
+    frac: S::V,
+    /// Squaring steps the largest whole exponent needs.
+    steps: u32,
+    /// Whether some lane's exponent is fractional.
+    any_frac: bool,
+}
+
+impl<S: Simd> SurfaceV<S> {
+    #[inline(always)]
+    fn new(s: S, lm: &LaneModel, raw: &[Lanes; 10]) -> Self {
+        let clean = |c: &Lanes| -> Lanes {
+            let mut r = *c;
+            for x in &mut r {
+                *x = math::clamp_or_lo(*x, 0.0, math::MAX);
+            }
+            r
+        };
+        let sh = clean(&raw[9]);
+        let norm = lm.normalization;
+        let mut scale = [0.0f32; W];
+        let mut whole = [0i32; W];
+        let mut frac = [0.0f32; W];
+        let mut or = 0u32;
+        for i in 0..W {
+            let e = if lm.lobe == Lobe::Blinn {
+                0.5 * sh[i]
+            } else {
+                sh[i]
+            };
+            scale[i] = match lm.lobe {
+                Lobe::None => 0.0,
+                _ if !norm.is_normalized() => 1.0,
+                Lobe::Phong => norm.phong_factor(sh[i]),
+                Lobe::Blinn => norm.blinn_factor(sh[i]),
+            };
+            let (n, f) = auto_split(e);
+            or |= n;
+            whole[i] = n as i32;
+            frac[i] = f;
+        }
+        let v3 = |a: usize| {
+            [
+                s.load(&clean(&raw[a])),
+                s.load(&clean(&raw[a + 1])),
+                s.load(&clean(&raw[a + 2])),
+            ]
+        };
+        SurfaceV {
+            ka: v3(0),
+            kd: v3(3),
+            ks: v3(6),
+            scale: s.load(&scale),
+            whole: s.load_i(&whole),
+            frac: s.load(&frac),
+            steps: 32 - or.leading_zeros(),
+            any_frac: frac.iter().any(|&f| f != 0.0),
         }
     }
 }
 
-/// Bases and partial products below this are set to 0 in [`auto_pow_lanes`]: a product of two
-/// kept values is then at least `2⁻¹²⁶`, never subnormal, and a lobe that loses them is below
-/// `2⁻⁶³` (an absolute error far under every tolerance of the batch).
+/// Bases and partial products below this are set to 0 in [`auto_pow`]: a product of two kept
+/// values is then at least `2⁻¹²⁶`, never subnormal, and a lobe that loses them is below `2⁻⁶³`
+/// (an absolute error far under every tolerance of the batch).
 const LANE_FLUSH: f32 = 1.0 / (1u64 << 63) as f32;
+
+/// `v`, or 0 where `v < LANE_FLUSH`.
+#[inline(always)]
+fn flushed<S: Simd>(s: S, v: S::V) -> S::V {
+    s.keep(s.ge(v, s.splat(LANE_FLUSH)), v)
+}
 
 /// `PowStrategy::Auto`'s `x^e` with an exponent per lane (`surface.whole`, `surface.frac`):
 /// squaring where it is whole, by the ladder of `pow_u32_fixed` (the same products in the same
@@ -480,68 +567,55 @@ const LANE_FLUSH: f32 = 1.0 / (1u64 << 63) as f32;
 /// some lane has, and the polynomial only when some lane needs it: a chunk of fractional
 /// shininesses squares nothing.
 #[inline(always)]
-fn auto_pow_lanes(x: &Lanes, surface: &SurfaceLanes) -> Lanes {
-    let flush = |v: f32| if v < LANE_FLUSH { 0.0 } else { v };
-    let whole = &surface.whole;
-    let steps = 32 - whole.iter().fold(0u32, |a, &n| a | n).leading_zeros();
-    let mut acc = [1.0f32; W];
-    let mut base = lanes!(|i| flush(x[i]));
-    for k in 0..steps {
-        acc = lanes!(|i| if (whole[i] >> k) & 1 == 1 {
-            flush(acc[i] * base[i])
-        } else {
-            acc[i]
-        });
-        base = lanes!(|i| if whole[i] >> (k + 1) != 0 {
-            flush(base[i] * base[i])
-        } else {
-            base[i]
-        });
+fn auto_pow<S: Simd>(s: S, x: S::V, sf: &SurfaceV<S>) -> S::V {
+    let mut acc = s.splat(1.0);
+    let mut base = flushed(s, x);
+    let mut rem = sf.whole;
+    for _ in 0..sf.steps {
+        acc = s.select(s.odd(rem), flushed(s, s.mul(acc, base)), acc);
+        rem = s.shr1(rem);
+        base = s.select(s.nonzero(rem), flushed(s, s.mul(base, base)), base);
     }
-    let frac = &surface.frac;
-    let poly = if frac.iter().fold(0u32, |a, f| a | f.to_bits()) != 0 {
-        lanes!(|i| poly_pow(Poly::P7, if x[i] > 0.0 { x[i] } else { 1.0 }, frac[i]))
+    let pos = s.gt(x, s.splat(0.0));
+    let r = if sf.any_frac {
+        let poly = poly_pow(s, Poly::P7, s.select(pos, x, s.splat(1.0)), sf.frac);
+        s.select(s.gt(sf.frac, s.splat(0.0)), poly, acc)
     } else {
-        [0.0; W]
+        acc
     };
-    lanes!(|i| if x[i] > 0.0 {
-        if frac[i] != 0.0 { poly[i] } else { acc[i] }
-    } else {
-        0.0
-    })
+    s.keep(pos, r)
 }
 
-/// `min(x, f32::MAX)`.
+/// `a·b` summed over the three components.
 #[inline(always)]
-fn saturate(x: f32) -> f32 {
-    math::min_or(x, math::MAX)
+fn dot<S: Simd>(s: S, a: &[S::V; 3], b: &[S::V; 3]) -> S::V {
+    s.mul_add(a[0], b[0], s.mul_add(a[1], b[1], s.mul(a[2], b[2])))
 }
 
-/// `q − p` per lane and its squared length; lanes whose squared length leaves `[LO, HI]` are
-/// marked in `bad` for the scalar path.
+/// The three components of `v` in every lane.
 #[inline(always)]
-fn offset_to(q: Vec3, p: [&Lanes; 3], bad: &mut Lanes) -> ([Lanes; 3], Lanes) {
-    let [px, py, pz] = p;
-    let dx = lanes!(|i| q.x - px[i]);
-    let dy = lanes!(|i| q.y - py[i]);
-    let dz = lanes!(|i| q.z - pz[i]);
-    let ll = lanes!(|i| dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-    *bad = lanes!(|i| if ll[i] >= LO && ll[i] <= HI {
-        bad[i]
-    } else {
-        1.0
-    });
-    ([dx, dy, dz], ll)
+fn splat3<S: Simd>(s: S, v: Vec3) -> [S::V; 3] {
+    [s.splat(v.x), s.splat(v.y), s.splat(v.z)]
 }
 
-/// `d · inv` per component and lane.
+/// Lanes whose squared norm lies in `[LO, HI]` (false for NaN).
 #[inline(always)]
-fn scaled([dx, dy, dz]: &[Lanes; 3], inv: &Lanes) -> (Lanes, Lanes, Lanes) {
-    (
-        lanes!(|i| dx[i] * inv[i]),
-        lanes!(|i| dy[i] * inv[i]),
-        lanes!(|i| dz[i] * inv[i]),
-    )
+fn in_range<S: Simd>(s: S, x: S::V) -> S::M {
+    s.and(s.ge(x, s.splat(LO)), s.le(x, s.splat(HI)))
+}
+
+/// `q − p` per lane, its squared length, and `ok` with the lanes whose squared length leaves
+/// `[LO, HI]` cleared (for the scalar path).
+#[inline(always)]
+fn offset_to<S: Simd>(s: S, q: Vec3, p: &[S::V; 3], ok: &mut S::M) -> ([S::V; 3], S::V) {
+    let d = [
+        s.sub(s.splat(q.x), p[0]),
+        s.sub(s.splat(q.y), p[1]),
+        s.sub(s.splat(q.z), p[2]),
+    ];
+    let dd = dot(s, &d, &d);
+    *ok = s.and(*ok, in_range(s, dd));
+    (d, dd)
 }
 
 /// Below this `2 + 2 L·V` (an angle between `L` and `V` above about 174°) the Blinn-Phong lane is
@@ -550,309 +624,396 @@ fn scaled([dx, dy, dz]: &[Lanes; 3], inv: &Lanes) -> (Lanes, Lanes, Lanes) {
 /// level at high shininess. For random directions about 0.25% of lanes are affected.
 pub(super) const BLINN_DEN_MIN: f32 = 1e-2;
 
-/// Shades 16 points. Returns the colours and which lanes need the scalar path. `FOLDED` is
-/// [`Setup::folded`]: sum the products of light and material colours (nothing can overflow)
-/// instead of the three sums of the saturation rule (never with a per-point `surface`).
-/// `visibility`, the call's inputs with this chunk's first point and count, gives each light's
-/// visibility per lane (clamped to `[0, 1]` here, NaN read as 0), which scales the light's
-/// diffuse and specular parts, not its ambient part. (Plain functions and options, not closures:
-/// a closure is not always inlined, and out of line it would lose the level's target features.)
-#[inline(always)]
-fn chunk<M, L, R, const FOLDED: bool>(
-    k: &Setup<'_, M, L>,
-    p: &[Lanes; 3],
-    n: &[Lanes; 3],
-    rsqrt: &R,
-    surface: Option<&SurfaceLanes>,
-    visibility: Option<(&PointInputs<'_>, usize, usize)>,
-) -> [Lanes; 4]
-where
-    M: BatchModel,
-    L: BatchLight,
-    R: Fn(Lanes) -> Lanes,
-{
-    let [px, py, pz] = p;
-    let [nx, ny, nz] = n;
-    let nn = lanes!(|i| nx[i] * nx[i] + ny[i] * ny[i] + nz[i] * nz[i]);
-    // 1.0 marks a lane for the scalar path (an f32 mask keeps every lane loop vectorisable).
-    let mut bad = lanes!(|i| if nn[i] >= LO && nn[i] <= HI { 0.0 } else { 1.0 });
-    let inv_n = rsqrt(nn);
-    let ux = lanes!(|i| nx[i] * inv_n[i]);
-    let uy = lanes!(|i| ny[i] * inv_n[i]);
-    let uz = lanes!(|i| nz[i] * inv_n[i]);
+/// A falloff light's unit direction and factor per lane, by `LightSource::sample`'s own
+/// operations: the direction and distance of `direction_and_distance` (an exact square root, then
+/// `v · (1/d)`), the factor of `Attenuation::factor` (as `FlatAttenuation`) times the spot factor.
+///
+/// Scalar code, out of line: inlined, its loop and its formulas' branches would keep the kernel's
+/// vectors in memory for every light, spot and falloff or not.
+#[inline(never)]
+fn falloff(
+    d: &[Lanes; 3],
+    dd: &Lanes,
+    flat: FlatAttenuation,
+    spot: Option<SpotLight>,
+) -> ([Lanes; 3], Lanes) {
+    let [dx, dy, dz] = d;
+    let (mut lx, mut ly, mut lz, mut att) = ([0.0f32; W], [0.0f32; W], [0.0f32; W], [0.0f32; W]);
+    for i in 0..W {
+        let dist = math::sqrt(dd[i]);
+        let inv = 1.0 / dist;
+        (lx[i], ly[i], lz[i]) = (dx[i] * inv, dy[i] * inv, dz[i] * inv);
+        let f = flat.factor(dist);
+        att[i] = match spot {
+            Some(spot) => {
+                let c = spot.spot_factor(Vec3::new(lx[i], ly[i], lz[i]));
+                if c > 0.0 { (f * c).min(math::MAX) } else { 0.0 }
+            }
+            None => f,
+        };
+    }
+    ([lx, ly, lz], att)
+}
 
-    let (vx, vy, vz) = match k.view {
-        ViewK::At(e) => {
-            let (d, vv) = offset_to(e, [px, py, pz], &mut bad);
-            scaled(&d, &rsqrt(vv))
-        }
-        ViewK::Infinite(v) => ([v.x; W], [v.y; W], [v.z; W]),
-    };
-    let nv = lanes!(|i| ux[i] * vx[i] + uy[i] * vy[i] + uz[i] * vz[i]);
+/// A prepared light with its constants in every lane, built once per call, so the loop reads
+/// them as memory operands instead of broadcasting scalars for every chunk.
+#[derive(Clone, Copy)]
+pub(crate) struct LightLanes<S: Simd> {
+    light: PreparedLight,
+    /// Position (point light) or direction (directional light).
+    q: [S::V; 3],
+    /// Attenuation coefficients `c`, `l`, `q` (point light).
+    c: [S::V; 3],
+    /// The colours the call sums: the light's, or folded, their products with the material's.
+    la: [S::V; 3],
+    ld: [S::V; 3],
+    ls: [S::V; 3],
+}
 
-    // Per channel, three sums over the lights, each multiplied by the material's colour once at
-    // the end (see the module docs' saturation rule):
-    //   amb = Ia + Σ f·La,   dif = Σ f·max(N·L, 0)·Ld,   spe = Σ min(f·ws, MAX)·Ls.
-    // Folded, `amb` alone holds Ke + Ka⊙Ia + Σ f·(Ka⊙La + max(N·L, 0)·Kd⊙Ld + ws·Ks⊙Ls).
-    let start = if FOLDED { k.base } else { k.ambient };
-    let mut amb = [[start.x; W], [start.y; W], [start.z; W]];
-    let mut dif = [[0.0f32; W]; 3];
-    let mut spe = [[0.0f32; W]; 3];
-    let lm = &k.lm;
-    for j in 0..k.scene.lights.len() {
-        let light = k.light(j);
-        let (la, ld, ls) = if FOLDED {
+impl<S: Simd> LightLanes<S> {
+    #[inline(always)]
+    fn new(s: S, light: PreparedLight, folded: bool) -> Self {
+        let (q, c) = match light.lane {
+            LaneLight::Point {
+                position,
+                coefficients,
+            } => (position, Vec3::from_array(coefficients)),
+            LaneLight::Directional(d) => (d, Vec3::ZERO),
+            LaneLight::AmbientOnly | LaneLight::Falloff { .. } => (Vec3::ZERO, Vec3::ZERO),
+        };
+        let (la, ld, ls) = if folded {
             (light.ka, light.kd, light.ks)
         } else {
             (light.la, light.ld, light.ls)
         };
-        let (la, ld, ls) = (la.to_array(), ld.to_array(), ls.to_array());
-        let (lx, ly, lz, att) = match light.lane {
+        LightLanes {
+            light,
+            q: splat3(s, q),
+            c: splat3(s, c),
+            la: splat3(s, la),
+            ld: splat3(s, ld),
+            ls: splat3(s, ls),
+        }
+    }
+}
+
+/// Shades 16 points. Returns the colours and the lanes the scalar path must redo (bit `i` for
+/// lane `i`). `FOLDED` is [`Setup::folded`]: sum the products of light and material colours
+/// (nothing can overflow) instead of the three sums of the saturation rule (never with a
+/// per-point `surface`). `visibility`, the call's inputs with this chunk's first point and count,
+/// gives each light's visibility per lane (clamped to `[0, 1]` here, NaN read as 0), which scales
+/// the light's diffuse and specular parts, not its ambient part.
+///
+/// Cosines come from unnormalised vectors times inverse norms, `N·V = (n·V)/(‖n‖‖V‖)` and so on:
+/// the dot products run alongside the inverse square roots instead of after them, and the loop is
+/// bound by these dependency chains, not by the number of operations.
+#[inline(always)]
+fn chunk<S, M, L, const FOLDED: bool>(
+    s: S,
+    k: &Setup<'_, M, L>,
+    lights: &[LightLanes<S>; PREPARED],
+    p: &[S::V; 3],
+    n: &[S::V; 3],
+    surface: Option<&SurfaceV<S>>,
+    visibility: Option<(&PointInputs<'_>, usize, usize)>,
+) -> ([S::V; 3], u32)
+where
+    S: Simd,
+    M: BatchModel,
+    L: BatchLight,
+{
+    let zero = s.splat(0.0);
+    let one = s.splat(1.0);
+    let max = s.splat(math::MAX);
+    let nn = dot(s, n, n);
+    let mut ok = in_range(s, nn);
+    let inv_n = s.rsqrt(nn);
+    let (v, inv_v) = match k.view {
+        ViewK::At(e) => {
+            let (d, vv) = offset_to(s, e, p, &mut ok);
+            (d, s.rsqrt(vv))
+        }
+        ViewK::Infinite(d) => (splat3(s, d), one),
+    };
+    let nv = s.mul(dot(s, n, &v), s.mul(inv_n, inv_v));
+
+    // Per channel, three sums over the lights, each multiplied by the material's colour once at
+    // the end (the saturation rule in the module docs of `batch`):
+    //   amb = Ia + Σ f·La,   dif = Σ f·max(N·L, 0)·Ld,   spe = Σ min(f·ws, MAX)·Ls.
+    // Folded, `amb` alone holds Ke + Ka⊙Ia + Σ f·(Ka⊙La + max(N·L, 0)·Kd⊙Ld + ws·Ks⊙Ls).
+    let mut amb = splat3(s, if FOLDED { k.base } else { k.ambient });
+    let mut dif = [zero; 3];
+    let mut spe = [zero; 3];
+    let lm = &k.lm;
+    // One light's terms added to the sums (a macro: its `continue`s are the loop's).
+    macro_rules! add_light {
+        ($lj:expr, $j:expr) => {{
+            let lj: &LightLanes<S> = $lj;
+            let j: usize = $j;
+        let (la, ld, ls) = (lj.la, lj.ld, lj.ls);
+        let light = lj.light;
+        // (N·L, L unnormalised, 1/(‖L‖‖V‖), attenuation)
+        let (nl, l, inv_lv, att) = match light.lane {
             LaneLight::AmbientOnly => {
-                for c in 0..3 {
-                    amb[c] = lanes!(|i| amb[c][i] + la[c]);
-                }
+                amb = [
+                    s.add(amb[0], la[0]),
+                    s.add(amb[1], la[1]),
+                    s.add(amb[2], la[2]),
+                ];
                 continue;
             }
-            LaneLight::Directional(d) => ([d.x; W], [d.y; W], [d.z; W], [1.0f32; W]),
-            LaneLight::Point {
-                position: q,
-                coefficients: [c0, c1, c2],
-            } => {
-                let (offset, ll) = offset_to(q, [px, py, pz], &mut bad);
-                let inv = rsqrt(ll);
-                let d = lanes!(|i| ll[i] * inv[i]);
-                let den = lanes!(|i| c0 + d[i] * (c1 + c2 * d[i]));
+            LaneLight::Directional(_) => {
+                let l = lj.q;
+                (s.mul(dot(s, n, &l), inv_n), l, inv_v, one)
+            }
+            LaneLight::Point { .. } => {
+                let [c0, c1, c2] = lj.c;
+                let d = [
+                    s.sub(lj.q[0], p[0]),
+                    s.sub(lj.q[1], p[1]),
+                    s.sub(lj.q[2], p[2]),
+                ];
+                let dd = dot(s, &d, &d);
+                ok = s.and(ok, in_range(s, dd));
+                let inv = s.rsqrt(dd);
+                let dist = s.mul(dd, inv);
+                let den = s.mul_add(dist, s.mul_add(c2, dist, c1), c0);
                 // A denominator past f32::MAX (coefficients near it) is evaluated in f64 by
                 // `Attenuation::factor`: such lanes go to the scalar path.
-                bad = lanes!(|i| if den[i] < f32::INFINITY { bad[i] } else { 1.0 });
-                let att = lanes!(|i| 1.0 / math::max_or(den[i], Attenuation::MIN_DENOMINATOR));
-                let (lx, ly, lz) = scaled(&offset, &inv);
-                (lx, ly, lz, att)
+                ok = s.and(ok, s.lt(den, s.splat(f32::INFINITY)));
+                let att = s.div(one, s.max(den, s.splat(Attenuation::MIN_DENOMINATOR)));
+                (
+                    s.mul(dot(s, n, &d), s.mul(inv_n, inv)),
+                    d,
+                    s.mul(inv, inv_v),
+                    att,
+                )
             }
-            LaneLight::Falloff {
-                position: q, spot, ..
-            } => {
-                // `LightSource::sample`'s own operations: the direction and distance of
-                // `direction_and_distance` (an exact square root, then `v · (1/d)`), the factor
-                // of `Attenuation::factor` (as `FlatAttenuation`) times the spot factor.
-                let (offset, ll) = offset_to(q, [px, py, pz], &mut bad);
-                let d = lanes!(|i| math::sqrt(ll[i]));
-                let (lx, ly, lz) = scaled(&offset, &lanes!(|i| 1.0 / d[i]));
-                let flat = light.flat;
-                let att = lanes!(|i| flat.factor(d[i]));
-                let att = match spot {
-                    Some(spot) => lanes!(|i| {
-                        let c = spot.spot_factor(Vec3::new(lx[i], ly[i], lz[i]));
-                        if c > 0.0 {
-                            (att[i] * c).min(math::MAX)
-                        } else {
-                            0.0
-                        }
-                    }),
-                    None => att,
-                };
-                (lx, ly, lz, att)
+            LaneLight::Falloff { position, spot, .. } => {
+                let (d, dd) = offset_to(s, position, p, &mut ok);
+                let d = [s.store(d[0]), s.store(d[1]), s.store(d[2])];
+                let (l, att) = falloff(&d, &s.store(dd), light.flat, spot);
+                let (l, att) = ([s.load(&l[0]), s.load(&l[1]), s.load(&l[2])], s.load(&att));
+                (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
             }
         };
-        let nl = lanes!(|i| ux[i] * lx[i] + uy[i] * ly[i] + uz[i] * lz[i]);
-        // The visibility scales the diffuse and specular parts (a constant 1 without shadows,
-        // which the compiler removes).
+        let nl0 = s.max(nl, zero);
+        // The visibility scales the diffuse and specular parts.
         let attv = match visibility {
             Some((inputs, i, count)) => {
-                let vis = inputs.visibility(j, i, count);
-                lanes!(|i| att[i] * math::clamp_or_lo(vis[i], 0.0, 1.0))
+                let vis = s.load(&inputs.visibility(j, i, count));
+                s.mul(att, s.min(s.max(vis, zero), one))
             }
             None => att,
         };
+        // The light's gated, scaled-later specular lobe, without its factor.
+        let spec = if k.specular_on {
+            let lv = s.mul(dot(s, &l, &v), inv_lv);
+            let base = match lm.lobe {
+                Lobe::Blinn => {
+                    let sum = s.max(s.add(nl, nv), zero);
+                    let den = s.mul_add(s.splat(2.0), lv, s.splat(2.0));
+                    // Near L = −V the cosine form's 2 + 2 L·V has lost its digits
+                    // (docs/accuracy.md): those rare lanes go to the scalar path, which uses
+                    // ‖L+V‖² from the vectors.
+                    ok = s.and(ok, s.ge(den, s.splat(BLINN_DEN_MIN)));
+                    let q = s.min(s.div(s.mul(sum, sum), den), one);
+                    s.keep(s.gt(den, s.splat(1e-12)), q)
+                }
+                _ => s.min(s.mul_sub(s.add(nl, nl), nv, lv), one),
+            };
+            let lobe = match surface {
+                Some(sf) => auto_pow(s, base, sf),
+                None => pow(s, k.plan, k.flush, base),
+            };
+            Some(match lm.gate {
+                SpecularGate::Step => s.keep(s.gt(nl, zero), lobe),
+                SpecularGate::Cosine => s.mul(nl0, lobe),
+                SpecularGate::None => lobe,
+            })
+        } else {
+            None
+        };
         // f and f·max(N·L, 0) are finite (f ≤ 1/MIN_DENOMINATOR), and so is every colour: no
         // product below is 0·∞, and the sums of terms ≥ 0 can reach +∞ but never NaN.
-        let wd = lanes!(|i| attv[i] * math::max_or(nl[i], 0.0));
-        for c in 0..3 {
-            if FOLDED {
-                amb[c] = lanes!(|i| amb[c][i] + att[i] * la[c] + wd[i] * ld[c]);
-            } else {
-                amb[c] = lanes!(|i| amb[c][i] + att[i] * la[c]);
-                dif[c] = lanes!(|i| dif[c][i] + wd[i] * ld[c]);
-            }
-        }
-        if !k.specular_on {
-            continue;
-        }
-        let lv = lanes!(|i| lx[i] * vx[i] + ly[i] * vy[i] + lz[i] * vz[i]);
-        let base = match lm.lobe {
-            Lobe::Blinn => lanes!(|i| {
-                let s = math::max_or(nl[i] + nv[i], 0.0);
-                let den = 2.0 + 2.0 * lv[i];
-                if den > 1e-12 {
-                    math::min_or(s * s / den, 1.0)
-                } else {
-                    0.0
-                }
-            }),
-            _ => lanes!(|i| math::min_or(math::max_or(2.0 * nl[i] * nv[i] - lv[i], -1.0), 1.0)),
-        };
-        if let Lobe::Blinn = lm.lobe {
-            // Near L = −V the cosine form's 2 + 2 L·V has lost its digits (docs/accuracy.md);
-            // those rare lanes go to the scalar path, which uses ‖L+V‖² from the vectors.
-            bad = lanes!(|i| if 2.0 + 2.0 * lv[i] >= BLINN_DEN_MIN {
-                bad[i]
-            } else {
-                1.0
-            });
-        }
-        let lobe = match surface {
-            Some(sf) => auto_pow_lanes(&base, sf),
-            None => pow_lanes(k.plan, k.flush, base),
-        };
-        let ws = match lm.gate {
-            SpecularGate::Step => lanes!(|i| if nl[i] > 0.0 { attv[i] * lobe[i] } else { 0.0 }),
-            SpecularGate::Cosine => lanes!(|i| attv[i] * math::max_or(nl[i], 0.0) * lobe[i]),
-            SpecularGate::None => lanes!(|i| attv[i] * lobe[i]),
-        };
         if FOLDED {
-            // The scale is in `ks`, and nothing overflows.
+            // Per channel: amb += f·La' + f·vis·(max(N·L, 0)·Ld' + lobe·Ls'), the light's terms
+            // summed first so the chains into `amb` stay short. The scale is in `ks`, and
+            // nothing overflows.
             for c in 0..3 {
-                amb[c] = lanes!(|i| amb[c][i] + ws[i] * ls[c]);
+                let t = match visibility {
+                    None => s.mul_add(nl0, ld[c], la[c]),
+                    Some(_) => s.mul(nl0, ld[c]),
+                };
+                let t = match spec {
+                    Some(w) => s.mul_add(w, ls[c], t),
+                    None => t,
+                };
+                amb[c] = match visibility {
+                    None => s.mul_add(att, t, amb[c]),
+                    Some(_) => s.mul_add(attv, t, s.mul_add(att, la[c], amb[c])),
+                };
             }
             continue;
         }
-        // A normalisation factor can be as large as f32::MAX: f·factor·lobe is clamped there (as
-        // `shade` clamps its weight) before it meets a colour, so a zero lobe stays 0.
-        let ws = if let Some(sf) = surface {
-            lanes!(|i| math::min_or(ws[i] * sf.scale[i], math::MAX))
-        } else if k.scaled {
-            let scale = lm.specular_scale;
-            lanes!(|i| math::min_or(ws[i] * scale, math::MAX))
-        } else {
-            ws
-        };
+        let wd = s.mul(attv, nl0);
         for c in 0..3 {
-            spe[c] = lanes!(|i| spe[c][i] + ws[i] * ls[c]);
+            amb[c] = s.mul_add(att, la[c], amb[c]);
+            dif[c] = s.mul_add(wd, ld[c], dif[c]);
         }
+        if let Some(w) = spec {
+            // A normalisation factor can be as large as f32::MAX: f·factor·lobe is clamped there
+            // (as `shade` clamps its weight) before it meets a colour, so a zero lobe stays 0.
+            let ws = s.mul(attv, w);
+            let ws = match surface {
+                Some(sf) => s.min(s.mul(ws, sf.scale), max),
+                None if k.scaled => s.min(s.mul(ws, s.splat(lm.specular_scale)), max),
+                None => ws,
+            };
+            for c in 0..3 {
+                spe[c] = s.mul_add(ws, ls[c], spe[c]);
+            }
+        }
+        }};
     }
+    for j in 0..k.scene.lights.len() {
+        let owned;
+        let lj: &LightLanes<S> = if k.all_prepared {
+            &lights[j % PREPARED]
+        } else {
+            owned = LightLanes::new(s, k.light(j), FOLDED);
+            &owned
+        };
+        add_light!(lj, j);
+    }
+    let bad = !s.bits(ok) & 0xffff;
     if FOLDED {
-        return [
-            lanes!(|i| math::min_or(amb[0][i], math::MAX)),
-            lanes!(|i| math::min_or(amb[1][i], math::MAX)),
-            lanes!(|i| math::min_or(amb[2][i], math::MAX)),
+        return (
+            [s.min(amb[0], max), s.min(amb[1], max), s.min(amb[2], max)],
             bad,
-        ];
+        );
     }
-    let ke = k.material.emission().to_array();
     // Each sum saturates at f32::MAX before the material's colour multiplies it; the total
-    // saturates again (`shade`'s order: ambient + diffuse + specular + emission). A loop, not a
-    // closure per channel: a closure may be left out of line, without the level's features.
-    let mut rgb = [[0.0f32; W]; 3];
+    // saturates again (`shade`'s order: ambient + diffuse + specular + emission).
+    let ke = k.material.emission();
+    let mut rgb = [zero; 3];
     for (c, out) in rgb.iter_mut().enumerate() {
         let (ka, kd, ks) = match surface {
             Some(sf) => (sf.ka[c], sf.kd[c], sf.ks[c]),
             None => (
-                [k.material.ambient()[c]; W],
-                [k.material.diffuse()[c]; W],
-                [k.material.specular()[c]; W],
+                s.splat(k.material.ambient()[c]),
+                s.splat(k.material.diffuse()[c]),
+                s.splat(k.material.specular()[c]),
             ),
         };
-        *out = lanes!(|i| saturate(
-            saturate(ka[i] * saturate(amb[c][i]))
-                + saturate(kd[i] * saturate(dif[c][i]))
-                + saturate(ks[i] * saturate(spe[c][i]))
-                + ke[c]
-        ));
+        let ta = s.min(s.mul(ka, s.min(amb[c], max)), max);
+        let td = s.min(s.mul(kd, s.min(dif[c], max)), max);
+        let ts = s.min(s.mul(ks, s.min(spe[c], max)), max);
+        *out = s.min(s.add(s.add(s.add(ta, td), ts), s.splat(ke[c])), max);
     }
-    [rgb[0], rgb[1], rgb[2], bad]
+    (rgb, bad)
 }
 
-/// Re-shades the flagged lanes with the scalar path.
+/// Re-shades the points `i + j` for each lane `j` in `bad` with the scalar path, reading their
+/// inputs again from the slices (so the fast loop need not keep them alive) and writing over the
+/// kernel's colours: [`shade`](crate::shade), or with per-point `inputs`,
+/// [`Shader::shade_surface`] (which sanitises the raw surface) with the point's visibilities.
 #[cold]
 #[inline(never)]
-pub(crate) fn fixup<M: BatchModel, L: BatchLight>(
+fn fixup<M: BatchModel, L: BatchLight>(
     k: &Setup<'_, M, L>,
-    p: [Lanes; 3],
-    n: [Lanes; 3],
-    mut out: [Lanes; 4],
-    count: usize,
-) -> [Lanes; 4] {
-    for i in 0..count {
-        if out[3][i] != 0.0 {
-            let c = crate::shade(
-                k.model,
-                k.material,
-                k.scene,
-                Vec3::new(p[0][i], p[1][i], p[2][i]),
-                Vec3::new(n[0][i], n[1][i], n[2][i]),
-            )
-            .total();
-            out[0][i] = c.x;
-            out[1][i] = c.y;
-            out[2][i] = c.z;
-        }
-    }
-    out
-}
-
-/// [`fixup`] for a call with per-point inputs: [`Shader::shade_surface`] (which sanitises the raw
-/// surface) with the point's visibilities, point `i` of `inputs` being lane `i`.
-#[cold]
-#[inline(never)]
-fn fixup_inputs<M: BatchModel, L: BatchLight>(
-    k: &Setup<'_, M, L>,
-    p: [Lanes; 3],
-    n: [Lanes; 3],
-    inputs: &PointInputs<'_>,
-    mut out: [Lanes; 4],
-    count: usize,
-) -> [Lanes; 4] {
-    let raw = inputs.surface(0, count);
+    (pos, nor): (&SoaVec3<'_>, &SoaVec3<'_>),
+    inputs: Option<&PointInputs<'_>>,
+    out: [&mut [f32]; 3],
+    i: usize,
+    bad: u32,
+) {
+    let [r, g, b] = out;
     let shader = Shader::for_one_point(k.model, k.material, k.scene);
-    for i in 0..count {
-        if out[3][i] != 0.0 {
-            let surface = match raw {
-                Some(r) => Surface {
-                    ambient: Vec3::new(r[0][i], r[1][i], r[2][i]),
-                    diffuse: Vec3::new(r[3][i], r[4][i], r[5][i]),
-                    specular: Vec3::new(r[6][i], r[7][i], r[8][i]),
-                    shininess: r[9][i],
-                },
-                None => Surface::of(k.material),
-            };
-            let vis = VisibilityFn(|j| inputs.visibility(j, i, 1)[0]);
-            let c = shader
-                .shade_surface(
-                    Vec3::new(p[0][i], p[1][i], p[2][i]),
-                    Vec3::new(n[0][i], n[1][i], n[2][i]),
-                    &surface,
-                    vis,
-                )
-                .total();
-            out[0][i] = c.x;
-            out[1][i] = c.y;
-            out[2][i] = c.z;
+    for j in 0..W {
+        if bad & (1 << j) == 0 {
+            continue;
         }
+        let at = i + j;
+        let p = Vec3::new(pos.x[at], pos.y[at], pos.z[at]);
+        let n = Vec3::new(nor.x[at], nor.y[at], nor.z[at]);
+        let c = match inputs {
+            None => crate::shade(k.model, k.material, k.scene, p, n),
+            Some(inputs) => {
+                let surface = match inputs.surface(at, 1) {
+                    Some(r) => Surface {
+                        ambient: Vec3::new(r[0][0], r[1][0], r[2][0]),
+                        diffuse: Vec3::new(r[3][0], r[4][0], r[5][0]),
+                        specular: Vec3::new(r[6][0], r[7][0], r[8][0]),
+                        shininess: r[9][0],
+                    },
+                    None => Surface::of(k.material),
+                };
+                let vis = VisibilityFn(|l| inputs.visibility(l, at, 1)[0]);
+                shader.shade_surface(p, n, &surface, vis)
+            }
+        }
+        .total();
+        (r[at], g[at], b[at]) = (c.x, c.y, c.z);
     }
-    out
 }
 
-/// One chunk of [`run_with`]: its points `i..i + count` shaded, the lanes the scalar path must
-/// redo flagged.
+/// Runs the kernel at level `S` over the common prefix of the slices; returns its length.
+/// `INPUTS` says whether `inputs` may hold per-point inputs: each level compiles both as separate
+/// functions, so the plain calls' loop is not grown by the G-buffer's instances.
+#[inline(always)]
+pub(crate) fn run<S: Simd, M: BatchModel, L: BatchLight, const INPUTS: bool>(
+    s: S,
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    inputs: &PointInputs<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    if !INPUTS {
+        return if k.folded {
+            run_with::<S, M, L, true, false, false>(s, k, pos, nor, inputs, out)
+        } else {
+            run_with::<S, M, L, false, false, false>(s, k, pos, nor, inputs, out)
+        };
+    }
+    match (inputs.per_point_surface(), inputs.visibility.is_some()) {
+        (false, _) if k.folded => {
+            run_with::<S, M, L, true, false, true>(s, k, pos, nor, inputs, out)
+        }
+        (false, _) => run_with::<S, M, L, false, false, true>(s, k, pos, nor, inputs, out),
+        (true, false) => run_with::<S, M, L, false, true, false>(s, k, pos, nor, inputs, out),
+        (true, true) => run_with::<S, M, L, false, true, true>(s, k, pos, nor, inputs, out),
+    }
+}
+
+/// Whether a call has per-point inputs (a G-buffer's surfaces or visibilities).
+#[inline]
+pub(crate) fn has_inputs(inputs: &PointInputs<'_>) -> bool {
+    inputs.per_point_surface() || inputs.visibility.is_some()
+}
+
+/// One chunk of [`run_with`]: points `i..i + count` (their positions `p` and normals `n`)
+/// shaded, with the lanes the scalar path must redo.
 #[inline(always)]
 #[allow(
     clippy::too_many_arguments,
-    reason = "one argument per lane array the kernel reads"
+    reason = "the level, the call, the chunk's lanes and where they are"
 )]
-fn shade_chunk<M, L, R, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+fn shade_chunk<S, M, L, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+    s: S,
     k: &Setup<'_, M, L>,
-    p: &[Lanes; 3],
-    n: &[Lanes; 3],
-    rsqrt: &R,
+    lights: &[LightLanes<S>; PREPARED],
+    p: [Lanes; 3],
+    n: [Lanes; 3],
     inputs: &PointInputs<'_>,
     i: usize,
     count: usize,
-) -> [Lanes; 4]
+) -> ([S::V; 3], u32)
 where
+    S: Simd,
     M: BatchModel,
     L: BatchLight,
-    R: Fn(Lanes) -> Lanes,
 {
     let raw = if SURFACE {
         inputs.surface(i, count)
@@ -865,7 +1026,7 @@ where
         reason = "a closure may be left out of line, without the level's target features"
     )]
     let surface = match raw {
-        Some(raw) => Some(SurfaceLanes::new(&k.lm, &raw)),
+        Some(raw) => Some(SurfaceV::new(s, &k.lm, &raw)),
         None => None,
     };
     let visibility = if VISIBILITY {
@@ -873,160 +1034,151 @@ where
     } else {
         None
     };
-    chunk::<M, L, R, FOLDED>(k, p, n, rsqrt, surface.as_ref(), visibility)
-}
-
-/// The flagged lanes of a chunk re-shaded: [`fixup`], or [`fixup_inputs`] with per-point inputs.
-#[inline(always)]
-fn fix<M: BatchModel, L: BatchLight>(
-    k: &Setup<'_, M, L>,
-    p: [Lanes; 3],
-    n: [Lanes; 3],
-    inputs: Option<&PointInputs<'_>>,
-    i: usize,
-    c: [Lanes; 4],
-    count: usize,
-) -> [Lanes; 4] {
-    match inputs {
-        Some(inputs) => fixup_inputs(k, p, n, &inputs.from(i), c, count),
-        None => fixup(k, p, n, c, count),
-    }
-}
-
-/// Shades the common prefix of all slices with the given inverse square root; returns its length.
-#[inline(always)]
-pub(crate) fn run<M, L, R>(
-    k: &Setup<'_, M, L>,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    out: SoaRgb<'_>,
-    rsqrt: R,
-) -> usize
-where
-    M: BatchModel,
-    L: BatchLight,
-    R: Fn(Lanes) -> Lanes,
-{
-    let none = PointInputs::default();
-    if k.folded {
-        run_with::<M, L, R, true, false, false>(k, pos, nor, &none, out, rsqrt)
-    } else {
-        run_with::<M, L, R, false, false, false>(k, pos, nor, &none, out, rsqrt)
-    }
-}
-
-/// [`run`] with per-point `inputs` over at least as many points (the caller checks). Each
-/// combination of inputs is its own instance of the loop; a level compiles this in a function of
-/// its own, so the plain calls' function stays the size it was.
-#[inline(always)]
-pub(crate) fn run_inputs<M, L, R>(
-    k: &Setup<'_, M, L>,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-    rsqrt: R,
-) -> usize
-where
-    M: BatchModel,
-    L: BatchLight,
-    R: Fn(Lanes) -> Lanes,
-{
-    match (inputs.per_point_surface(), inputs.visibility.is_some()) {
-        (false, _) if k.folded => {
-            run_with::<M, L, R, true, false, true>(k, pos, nor, inputs, out, rsqrt)
-        }
-        (false, _) => run_with::<M, L, R, false, false, true>(k, pos, nor, inputs, out, rsqrt),
-        (true, false) => run_with::<M, L, R, false, true, false>(k, pos, nor, inputs, out, rsqrt),
-        (true, true) => run_with::<M, L, R, false, true, true>(k, pos, nor, inputs, out, rsqrt),
-    }
+    chunk::<S, M, L, FOLDED>(
+        s,
+        k,
+        lights,
+        &[s.load(&p[0]), s.load(&p[1]), s.load(&p[2])],
+        &[s.load(&n[0]), s.load(&n[1]), s.load(&n[2])],
+        surface.as_ref(),
+        visibility,
+    )
 }
 
 /// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present.
 #[inline(always)]
-fn run_with<M, L, R, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+fn run_with<S, M, L, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+    s: S,
     k: &Setup<'_, M, L>,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
-    rsqrt: R,
 ) -> usize
 where
+    S: Simd,
     M: BatchModel,
     L: BatchLight,
-    R: Fn(Lanes) -> Lanes,
 {
     let len = pos.len().min(nor.len()).min(out.len());
-    let (px, py, pz) = (&pos.x[..len], &pos.y[..len], &pos.z[..len]);
-    let (nx, ny, nz) = (&nor.x[..len], &nor.y[..len], &nor.z[..len]);
+    let pos = SoaVec3 {
+        x: &pos.x[..len],
+        y: &pos.y[..len],
+        z: &pos.z[..len],
+    };
+    let nor = SoaVec3 {
+        x: &nor.x[..len],
+        y: &nor.y[..len],
+        z: &nor.z[..len],
+    };
     let (r, g, b) = (&mut out.r[..len], &mut out.g[..len], &mut out.b[..len]);
+    let per_point = (SURFACE || VISIBILITY).then_some(inputs);
+    // The first lights' constants in every lane, once per call (a loop, not `array::from_fn`: a
+    // closure may be left out of line, without the level's target features).
+    let mut lights = [LightLanes::new(s, k.prepared[0], FOLDED); PREPARED];
+    for (slot, light) in lights.iter_mut().zip(k.prepared).skip(1) {
+        *slot = LightLanes::new(s, light, FOLDED);
+    }
+    let full = len / W * W;
     let mut i = 0;
-    while i + W <= len {
-        let p = [load(px, i), load(py, i), load(pz, i)];
-        let n = [load(nx, i), load(ny, i), load(nz, i)];
-        let mut c =
-            shade_chunk::<M, L, R, FOLDED, SURFACE, VISIBILITY>(k, &p, &n, &rsqrt, inputs, i, W);
-        // An integer OR reduction (a float max would be a serial chain).
-        if c[3].iter().fold(0u32, |a, &b| a | b.to_bits()) != 0 {
-            c = fix(k, p, n, (SURFACE || VISIBILITY).then_some(inputs), i, c, W);
+    while i < full {
+        let (c, bad) = shade_chunk::<S, M, L, FOLDED, SURFACE, VISIBILITY>(
+            s,
+            k,
+            &lights,
+            [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
+            [load(nor.x, i), load(nor.y, i), load(nor.z, i)],
+            inputs,
+            i,
+            W,
+        );
+        store(&mut r[i..i + W], s.store(c[0]));
+        store(&mut g[i..i + W], s.store(c[1]));
+        store(&mut b[i..i + W], s.store(c[2]));
+        if bad != 0 {
+            fixup(k, (&pos, &nor), per_point, [r, g, b], i, bad);
         }
-        r[i..i + W].copy_from_slice(&c[0]);
-        g[i..i + W].copy_from_slice(&c[1]);
-        b[i..i + W].copy_from_slice(&c[2]);
         i += W;
     }
     if i < len {
         let count = len - i;
-        let p = [
-            load_tail(px, i, count),
-            load_tail(py, i, count),
-            load_tail(pz, i, count),
-        ];
-        let n = [
-            load_tail(nx, i, count),
-            load_tail(ny, i, count),
-            load_tail(nz, i, count),
-        ];
-        let c = shade_chunk::<M, L, R, FOLDED, SURFACE, VISIBILITY>(
-            k, &p, &n, &rsqrt, inputs, i, count,
-        );
         // The padding lanes are shaded too (zero normals: flagged) and fixed only up to `count`.
-        let c = fix(
+        let (c, bad) = shade_chunk::<S, M, L, FOLDED, SURFACE, VISIBILITY>(
+            s,
             k,
-            p,
-            n,
-            (SURFACE || VISIBILITY).then_some(inputs),
+            &lights,
+            [
+                load_tail(pos.x, i, count),
+                load_tail(pos.y, i, count),
+                load_tail(pos.z, i, count),
+            ],
+            [
+                load_tail(nor.x, i, count),
+                load_tail(nor.y, i, count),
+                load_tail(nor.z, i, count),
+            ],
+            inputs,
             i,
-            c,
             count,
         );
-        r[i..].copy_from_slice(&c[0][..count]);
-        g[i..].copy_from_slice(&c[1][..count]);
-        b[i..].copy_from_slice(&c[2][..count]);
+        r[i..].copy_from_slice(&s.store(c[0])[..count]);
+        g[i..].copy_from_slice(&s.store(c[1])[..count]);
+        b[i..].copy_from_slice(&s.store(c[2])[..count]);
+        let bad = bad & ((1u32 << count) - 1);
+        if bad != 0 {
+            fixup(k, (&pos, &nor), per_point, [r, g, b], i, bad);
+        }
     }
     len
+}
+
+/// Writes one chunk's lanes over `out` (`W` long).
+#[inline(always)]
+fn store(out: &mut [f32], v: Lanes) {
+    if let Ok(a) = <&mut Lanes>::try_from(out) {
+        *a = v;
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::batch::simd::portable::Portable;
     use crate::pow::PowStrategy;
     use crate::pow::error_bounds::worst_over_domain;
 
-    #[test]
-    fn the_portable_lobe_power_meets_each_strategys_bound() {
-        // The kernels' pow differs from the scalar one only in flushing bases whose power would
-        // fall below 2⁻¹⁰⁰, an absolute error under 2⁻¹⁰⁰, far below the bound's 2⁻²⁴ floor.
+    /// The kernel's `pow` at level `s` meets every strategy's bound: the kernels' pow differs
+    /// from the scalar one in flushing bases whose power would fall below 2⁻¹⁰⁰ (an absolute
+    /// error under 2⁻¹⁰⁰, far below the bound's 2⁻²⁴ floor), and where the level fuses
+    /// multiply-adds, in the polynomials' rounding.
+    fn lobe_power_meets_each_strategys_bound<S: Simd>(s: S) {
         for p in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
-            let (e, x, s) = worst_over_domain(p, |s, xs| {
-                let plan = p.plan(s);
-                pow_lanes(plan, flush_below(plan), *xs)
+            let (e, x, sh) = worst_over_domain(p, |sh, xs| {
+                let plan = p.plan(sh);
+                s.store(pow(s, plan, flush_below(plan), s.load(xs)))
             });
             assert!(
                 e <= p.max_relative_error() as f64,
-                "{p:?}: err {e:e} at x = {x:e}, s = {s:e}"
+                "{p:?}: err {e:e} at x = {x:e}, s = {sh:e}"
             );
         }
+    }
+
+    #[test]
+    fn the_lobe_power_meets_each_strategys_bound_at_every_level() {
+        lobe_power_meets_each_strategys_bound(Portable);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::batch::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
+            lobe_power_meets_each_strategys_bound(Sse2);
+            if let Some(t) = Avx2::new() {
+                lobe_power_meets_each_strategys_bound(t);
+            }
+            if let Some(t) = Avx512::new() {
+                lobe_power_meets_each_strategys_bound(t);
+            }
+        }
+        #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+        lobe_power_meets_each_strategys_bound(crate::batch::simd::neon::Neon);
     }
 }

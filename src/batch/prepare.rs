@@ -96,11 +96,10 @@ pub trait BatchModel: ReflectionModel + sealed::Sealed {
 /// runs in the vector kernel.
 ///
 /// [`DirectionalLight`] and [`PointLight`] with [`Attenuation::None`] or
-/// [`Attenuation::Polynomial`] run on the kernel's fastest path (at the `Avx512` level, the
-/// intrinsics kernel). A [`SpotLight`], or a point light with another falloff, gets its
-/// direction and distance per lane by an exact square root and division and its factor by the
-/// scalar path's own formula (the spot factor's `powf` lane by lane), and a call with one runs
-/// the portable kernel at every level.
+/// [`Attenuation::Polynomial`] run on the kernel's fastest path, in vector arithmetic. A
+/// [`SpotLight`], or a point light with another falloff, gets its direction and distance per lane
+/// by an exact square root and division and its factor by the scalar path's own formula (the spot
+/// factor's `powf` lane by lane), at every level.
 pub trait BatchLight: LightSource + sealed::Sealed {
     /// The light's kernel form, or `None` when the kernel does not handle it.
     #[doc(hidden)]

@@ -1,0 +1,259 @@
+//! The per-level primitives of the batch kernel: one small trait, [`Simd`], over 16 lanes.
+//!
+//! The kernel ([`kernel`](super::kernel)) is written once, generic over `S: Simd`; each level
+//! implements the trait with its own instructions, as libm's `select_implementation!` picks an
+//! architecture's routine for one operation:
+//!
+//! | level | file | 16 lanes are | inverse square root |
+//! |---|---|---|---|
+//! | `Portable` | `simd/portable.rs` | `[f32; 16]`, a loop LLVM vectorises | `1 / sqrt(x)` |
+//! | `Sse2` | `simd/sse2.rs` | 4 × `__m128` | `rsqrtps` + one Newton step |
+//! | `Avx2` | `simd/avx2.rs` | 2 × `__m256`, with FMA | `vrsqrtps` + one Newton step |
+//! | `Avx512` | `simd/avx512.rs` | 1 × `__m512`, with FMA and mask registers | `vrsqrt14ps` + one Newton step |
+//! | `Neon` | `simd/neon.rs` | 4 × `float32x4_t`, with FMA | `frsqrte` + two `frsqrts` steps |
+//!
+//! A value of an implementing type is a *token*: it exists only where its instructions run (each
+//! level's constructor checks the CPU), so its methods may call the intrinsics. The kernel runs
+//! inside the level's `#[target_feature]` function, where every method inlines into the loop.
+//!
+//! Every comparison is ordered (false for NaN), `min`/`max` return the second operand when either
+//! is NaN (x86's `minps`/`maxps`: `a < b ? a : b`), as [`math::min_or`](crate::math) does for
+//! one value, so a NaN can be mapped to a bound by its argument order.
+
+use super::kernel::{Lanes, W};
+
+/// Sixteen `f32` lanes and the operations the batch kernel needs on them (see the module docs).
+///
+/// `I` is sixteen `i32` lanes for the bit manipulations of `log2`/`exp2` and the per-lane
+/// exponent ladder; `M` a sixteen-lane mask.
+pub(crate) trait Simd: Copy {
+    /// Sixteen `f32` lanes.
+    type V: Copy;
+    /// Sixteen `i32` lanes.
+    type I: Copy;
+    /// A mask over sixteen lanes.
+    type M: Copy;
+
+    /// Every lane `x`.
+    fn splat(self, x: f32) -> Self::V;
+    /// The lanes of `a`.
+    fn load(self, a: &Lanes) -> Self::V;
+    /// The lanes as an array.
+    fn store(self, v: Self::V) -> Lanes;
+
+    /// `a + b`.
+    fn add(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a − b`.
+    fn sub(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a · b`.
+    fn mul(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a / b`.
+    fn div(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a · b + c`, fused where the level has FMA.
+    fn mul_add(self, a: Self::V, b: Self::V, c: Self::V) -> Self::V;
+    /// `a · b − c`, fused where the level has FMA.
+    fn mul_sub(self, a: Self::V, b: Self::V, c: Self::V) -> Self::V;
+    /// `a < b ? a : b` (`b` where either is NaN).
+    fn min(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a > b ? a : b` (`b` where either is NaN).
+    fn max(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `1/√x` for `x` in `[1e-30, 1e30]`, to a relative error of a few `2⁻²⁴` (the level's estimate
+    /// and Newton steps, or the exact quotient).
+    fn rsqrt(self, x: Self::V) -> Self::V;
+
+    /// `a < b` per lane.
+    fn lt(self, a: Self::V, b: Self::V) -> Self::M;
+    /// `a ≤ b` per lane.
+    fn le(self, a: Self::V, b: Self::V) -> Self::M;
+    /// `a > b` per lane.
+    fn gt(self, a: Self::V, b: Self::V) -> Self::M;
+    /// `a ≥ b` per lane.
+    fn ge(self, a: Self::V, b: Self::V) -> Self::M;
+    /// Both masks.
+    fn and(self, a: Self::M, b: Self::M) -> Self::M;
+    /// `m ? a : b` per lane.
+    fn select(self, m: Self::M, a: Self::V, b: Self::V) -> Self::V;
+    /// `m ? a : 0` per lane.
+    fn keep(self, m: Self::M, a: Self::V) -> Self::V;
+    /// Bit `i` set where lane `i` of `m` is set.
+    fn bits(self, m: Self::M) -> u32;
+
+    /// The bits of each lane.
+    fn to_bits(self, v: Self::V) -> Self::I;
+    /// Lanes with the given bits.
+    fn bits_to_f32(self, i: Self::I) -> Self::V;
+    /// Every lane `x`.
+    fn splat_i(self, x: i32) -> Self::I;
+    /// The lanes of `a`.
+    fn load_i(self, a: &[i32; W]) -> Self::I;
+    /// `a + b`, wrapping.
+    fn add_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `a − b`, wrapping.
+    fn sub_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `a << 23`.
+    fn shl23(self, a: Self::I) -> Self::I;
+    /// `a >> 23`, arithmetic.
+    fn sar23(self, a: Self::I) -> Self::I;
+    /// `a >> 1`, logical.
+    fn shr1(self, a: Self::I) -> Self::I;
+    /// Lanes whose lowest bit is set.
+    fn odd(self, a: Self::I) -> Self::M;
+    /// Lanes that are not 0.
+    fn nonzero(self, a: Self::I) -> Self::M;
+    /// Each lane converted to `f32` (exact below `2²⁴`).
+    fn to_f32(self, a: Self::I) -> Self::V;
+}
+
+/// Implements [`Simd`] for a level whose sixteen lanes are native vectors (one per index in `[$j]`), from one method per
+/// native operation (`$n`: the native `f32` vector, `$ni`: `i32` vector, `$nm`: mask vector).
+/// Each method applies the native operation to every part, written out (no closure, which might
+/// be left out of line without the level's target features).
+macro_rules! simd_by_parts {
+    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident) => {
+        impl $crate::batch::simd::Simd for $token {
+            type V = [$n; [$($j),+].len()];
+            type I = [$ni; [$($j),+].len()];
+            type M = [$nm; [$($j),+].len()];
+
+            #[inline(always)]
+            fn splat(self, x: f32) -> Self::V {
+                [$({ let _ = $j; $native::splat(x) }),+]
+            }
+            #[inline(always)]
+            fn load(self, a: &$crate::batch::kernel::Lanes) -> Self::V {
+                bytemuck::must_cast(*a)
+            }
+            #[inline(always)]
+            fn store(self, v: Self::V) -> $crate::batch::kernel::Lanes {
+                bytemuck::must_cast(v)
+            }
+            #[inline(always)]
+            fn add(self, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::add(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn sub(self, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::sub(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn mul(self, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::mul(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn div(self, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::div(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn mul_add(self, a: Self::V, b: Self::V, c: Self::V) -> Self::V {
+                [$($native::mul_add(a[$j], b[$j], c[$j])),+]
+            }
+            #[inline(always)]
+            fn mul_sub(self, a: Self::V, b: Self::V, c: Self::V) -> Self::V {
+                [$($native::mul_sub(a[$j], b[$j], c[$j])),+]
+            }
+            #[inline(always)]
+            fn min(self, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::min(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn max(self, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::max(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn rsqrt(self, x: Self::V) -> Self::V {
+                [$($native::rsqrt(x[$j])),+]
+            }
+            #[inline(always)]
+            fn lt(self, a: Self::V, b: Self::V) -> Self::M {
+                [$($native::lt(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn le(self, a: Self::V, b: Self::V) -> Self::M {
+                [$($native::le(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn gt(self, a: Self::V, b: Self::V) -> Self::M {
+                [$($native::lt(b[$j], a[$j])),+]
+            }
+            #[inline(always)]
+            fn ge(self, a: Self::V, b: Self::V) -> Self::M {
+                [$($native::le(b[$j], a[$j])),+]
+            }
+            #[inline(always)]
+            fn and(self, a: Self::M, b: Self::M) -> Self::M {
+                [$($native::and(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn select(self, m: Self::M, a: Self::V, b: Self::V) -> Self::V {
+                [$($native::select(m[$j], a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn keep(self, m: Self::M, a: Self::V) -> Self::V {
+                [$($native::keep(m[$j], a[$j])),+]
+            }
+            #[inline(always)]
+            fn bits(self, m: Self::M) -> u32 {
+                let per = $crate::batch::kernel::W / m.len();
+                0 $(| ($native::bits(m[$j]) << ($j * per)))+
+            }
+            #[inline(always)]
+            fn to_bits(self, v: Self::V) -> Self::I {
+                bytemuck::must_cast(v)
+            }
+            #[inline(always)]
+            fn bits_to_f32(self, i: Self::I) -> Self::V {
+                bytemuck::must_cast(i)
+            }
+            #[inline(always)]
+            fn splat_i(self, x: i32) -> Self::I {
+                [$({ let _ = $j; $native::splat_i(x) }),+]
+            }
+            #[inline(always)]
+            fn load_i(self, a: &[i32; $crate::batch::kernel::W]) -> Self::I {
+                bytemuck::must_cast(*a)
+            }
+            #[inline(always)]
+            fn add_i(self, a: Self::I, b: Self::I) -> Self::I {
+                [$($native::add_i(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn sub_i(self, a: Self::I, b: Self::I) -> Self::I {
+                [$($native::sub_i(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn shl23(self, a: Self::I) -> Self::I {
+                [$($native::shl23(a[$j])),+]
+            }
+            #[inline(always)]
+            fn sar23(self, a: Self::I) -> Self::I {
+                [$($native::sar23(a[$j])),+]
+            }
+            #[inline(always)]
+            fn shr1(self, a: Self::I) -> Self::I {
+                [$($native::shr1(a[$j])),+]
+            }
+            #[inline(always)]
+            fn odd(self, a: Self::I) -> Self::M {
+                [$($native::odd(a[$j])),+]
+            }
+            #[inline(always)]
+            fn nonzero(self, a: Self::I) -> Self::M {
+                [$($native::nonzero(a[$j])),+]
+            }
+            #[inline(always)]
+            fn to_f32(self, a: Self::I) -> Self::V {
+                [$($native::to_f32(a[$j])),+]
+            }
+        }
+    };
+}
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx2;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx512;
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+pub(crate) mod neon;
+pub(crate) mod portable;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod sse2;

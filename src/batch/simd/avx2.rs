@@ -1,0 +1,191 @@
+//! The `Avx2` level: sixteen lanes as two `__m256`, with FMA and `vrsqrtps` + one Newton step.
+
+#![allow(
+    unsafe_code,
+    reason = "AVX2 and FMA intrinsics, called only through an `Avx2` token, which exists only where the CPU has both"
+)]
+
+use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
+use crate::batch::prepare::{BatchLight, BatchModel};
+use crate::batch::soa::{SoaRgb, SoaVec3};
+use core::arch::x86_64::{
+    __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
+    _mm256_and_si256, _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps,
+    _mm256_cmpeq_epi32, _mm256_cvtepi32_ps, _mm256_div_ps, _mm256_fmadd_ps, _mm256_fmsub_ps,
+    _mm256_fnmadd_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+    _mm256_rsqrt_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_si256, _mm256_slli_epi32,
+    _mm256_srai_epi32, _mm256_srli_epi32, _mm256_sub_epi32, _mm256_sub_ps,
+};
+
+use crate::batch::Level;
+
+/// The `Avx2` level's token: proof that the CPU has AVX2 and FMA.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Avx2(());
+
+impl Avx2 {
+    /// The token, where the CPU has AVX2 and FMA.
+    #[inline]
+    pub(crate) fn new() -> Option<Self> {
+        Level::Avx2.is_supported().then_some(Avx2(()))
+    }
+}
+
+simd_by_parts!(Avx2, [0, 1], __m256, __m256i, __m256, native);
+
+/// The kernel compiled for AVX2 and FMA.
+#[target_feature(enable = "avx2,fma")]
+fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+    t: Avx2,
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    inputs: &PointInputs<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    run::<Avx2, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+}
+
+impl Avx2 {
+    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
+    /// length. Calls with and without per-point inputs are separate functions, so the plain
+    /// calls' loop is not grown by the G-buffer's instances.
+    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+        self,
+        k: &Setup<'_, M, L>,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &PointInputs<'_>,
+        out: SoaRgb<'_>,
+    ) -> usize {
+        // SAFETY: the token exists only where the CPU has AVX2 and FMA, every feature `kernel`
+        // enables.
+        unsafe {
+            if has_inputs(inputs) {
+                kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+            } else {
+                kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+            }
+        }
+    }
+}
+
+/// One `__m256` per operation. SAFETY (every `unsafe` block here): these functions are reached only
+/// through an [`Avx2`] token's methods, and a token exists only where `Level::Avx2.is_supported()`
+/// found AVX2 and FMA, every feature these intrinsics need.
+mod native {
+    use super::*;
+
+    #[inline(always)]
+    pub(super) fn splat(x: f32) -> __m256 {
+        unsafe { _mm256_set1_ps(x) }
+    }
+    #[inline(always)]
+    pub(super) fn add(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_add_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn sub(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_sub_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn mul(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_mul_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn div(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_div_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn mul_add(a: __m256, b: __m256, c: __m256) -> __m256 {
+        unsafe { _mm256_fmadd_ps(a, b, c) }
+    }
+    #[inline(always)]
+    pub(super) fn mul_sub(a: __m256, b: __m256, c: __m256) -> __m256 {
+        unsafe { _mm256_fmsub_ps(a, b, c) }
+    }
+    #[inline(always)]
+    pub(super) fn min(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_min_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn max(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_max_ps(a, b) }
+    }
+    /// `vrsqrtps` (relative error ≤ 1.5·2⁻¹²) and one Newton step `y·(1.5 − 0.5·x·y²)`.
+    #[inline(always)]
+    pub(super) fn rsqrt(x: __m256) -> __m256 {
+        unsafe {
+            let y = _mm256_rsqrt_ps(x);
+            let hx = _mm256_mul_ps(x, _mm256_set1_ps(0.5));
+            let t = _mm256_fnmadd_ps(hx, _mm256_mul_ps(y, y), _mm256_set1_ps(1.5));
+            _mm256_mul_ps(y, t)
+        }
+    }
+    #[inline(always)]
+    pub(super) fn lt(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_cmp_ps::<_CMP_LT_OQ>(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn le(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_cmp_ps::<_CMP_LE_OQ>(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn and(a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_and_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn select(m: __m256, a: __m256, b: __m256) -> __m256 {
+        unsafe { _mm256_blendv_ps(b, a, m) }
+    }
+    #[inline(always)]
+    pub(super) fn keep(m: __m256, a: __m256) -> __m256 {
+        unsafe { _mm256_and_ps(m, a) }
+    }
+    #[inline(always)]
+    pub(super) fn bits(m: __m256) -> u32 {
+        unsafe { _mm256_movemask_ps(m) as u32 }
+    }
+    #[inline(always)]
+    pub(super) fn splat_i(x: i32) -> __m256i {
+        unsafe { _mm256_set1_epi32(x) }
+    }
+    #[inline(always)]
+    pub(super) fn add_i(a: __m256i, b: __m256i) -> __m256i {
+        unsafe { _mm256_add_epi32(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn sub_i(a: __m256i, b: __m256i) -> __m256i {
+        unsafe { _mm256_sub_epi32(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn shl23(a: __m256i) -> __m256i {
+        unsafe { _mm256_slli_epi32::<23>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn sar23(a: __m256i) -> __m256i {
+        unsafe { _mm256_srai_epi32::<23>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shr1(a: __m256i) -> __m256i {
+        unsafe { _mm256_srli_epi32::<1>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn odd(a: __m256i) -> __m256 {
+        unsafe {
+            let one = _mm256_set1_epi32(1);
+            _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(a, one), one))
+        }
+    }
+    #[inline(always)]
+    pub(super) fn nonzero(a: __m256i) -> __m256 {
+        unsafe {
+            let zero = _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, _mm256_setzero_si256()));
+            _mm256_andnot_ps(zero, _mm256_castsi256_ps(_mm256_set1_epi32(-1)))
+        }
+    }
+    #[inline(always)]
+    pub(super) fn to_f32(a: __m256i) -> __m256 {
+        unsafe { _mm256_cvtepi32_ps(a) }
+    }
+}

@@ -1,0 +1,197 @@
+//! The `Portable` level: sixteen lanes as `[f32; 16]`, each operation a loop over the lanes with
+//! no cross-lane dependency, which LLVM vectorises for whatever the build targets; an exact
+//! `1 / sqrt(x)`.
+
+use super::super::simd::Simd;
+use crate::batch::kernel::{Lanes, W};
+use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
+use crate::batch::prepare::{BatchLight, BatchModel};
+use crate::batch::soa::{SoaRgb, SoaVec3};
+use crate::math;
+
+/// The `Portable` level's token (every build runs it).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Portable;
+
+/// `[f(0), f(1), …, f(15)]`.
+macro_rules! each {
+    (|$i:ident| $e:expr) => {{
+        let mut r = [Default::default(); W];
+        for $i in 0..W {
+            r[$i] = $e;
+        }
+        r
+    }};
+}
+
+/// The kernel at this level.
+#[inline(never)]
+fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+    t: Portable,
+    k: &Setup<'_, M, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    inputs: &PointInputs<'_>,
+    out: SoaRgb<'_>,
+) -> usize {
+    run::<Portable, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+}
+
+impl Portable {
+    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
+    /// length. Calls with and without per-point inputs are separate functions, so the plain
+    /// calls' loop is not grown by the G-buffer's instances.
+    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+        self,
+        k: &Setup<'_, M, L>,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &PointInputs<'_>,
+        out: SoaRgb<'_>,
+    ) -> usize {
+        if has_inputs(inputs) {
+            kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+        } else {
+            kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+        }
+    }
+}
+
+impl Simd for Portable {
+    type V = Lanes;
+    type I = [i32; W];
+    type M = [bool; W];
+
+    #[inline(always)]
+    fn splat(self, x: f32) -> Lanes {
+        [x; W]
+    }
+    #[inline(always)]
+    fn load(self, a: &Lanes) -> Lanes {
+        *a
+    }
+    #[inline(always)]
+    fn store(self, v: Lanes) -> Lanes {
+        v
+    }
+    #[inline(always)]
+    fn add(self, a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| a[i] + b[i])
+    }
+    #[inline(always)]
+    fn sub(self, a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| a[i] - b[i])
+    }
+    #[inline(always)]
+    fn mul(self, a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| a[i] * b[i])
+    }
+    #[inline(always)]
+    fn div(self, a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| a[i] / b[i])
+    }
+    #[inline(always)]
+    fn mul_add(self, a: Lanes, b: Lanes, c: Lanes) -> Lanes {
+        each!(|i| a[i] * b[i] + c[i])
+    }
+    #[inline(always)]
+    fn mul_sub(self, a: Lanes, b: Lanes, c: Lanes) -> Lanes {
+        each!(|i| a[i] * b[i] - c[i])
+    }
+    #[inline(always)]
+    fn min(self, a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| if a[i] < b[i] { a[i] } else { b[i] })
+    }
+    #[inline(always)]
+    fn max(self, a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| if a[i] > b[i] { a[i] } else { b[i] })
+    }
+    #[inline(always)]
+    fn rsqrt(self, x: Lanes) -> Lanes {
+        each!(|i| 1.0 / math::sqrt(x[i]))
+    }
+    #[inline(always)]
+    fn lt(self, a: Lanes, b: Lanes) -> [bool; W] {
+        each!(|i| a[i] < b[i])
+    }
+    #[inline(always)]
+    fn le(self, a: Lanes, b: Lanes) -> [bool; W] {
+        each!(|i| a[i] <= b[i])
+    }
+    #[inline(always)]
+    fn gt(self, a: Lanes, b: Lanes) -> [bool; W] {
+        each!(|i| a[i] > b[i])
+    }
+    #[inline(always)]
+    fn ge(self, a: Lanes, b: Lanes) -> [bool; W] {
+        each!(|i| a[i] >= b[i])
+    }
+    #[inline(always)]
+    fn and(self, a: [bool; W], b: [bool; W]) -> [bool; W] {
+        each!(|i| a[i] & b[i])
+    }
+    #[inline(always)]
+    fn select(self, m: [bool; W], a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| if m[i] { a[i] } else { b[i] })
+    }
+    #[inline(always)]
+    fn keep(self, m: [bool; W], a: Lanes) -> Lanes {
+        each!(|i| if m[i] { a[i] } else { 0.0 })
+    }
+    #[inline(always)]
+    fn bits(self, m: [bool; W]) -> u32 {
+        let mut b = 0;
+        for (i, &set) in m.iter().enumerate() {
+            b |= u32::from(set) << i;
+        }
+        b
+    }
+    #[inline(always)]
+    fn to_bits(self, v: Lanes) -> [i32; W] {
+        each!(|i| v[i].to_bits() as i32)
+    }
+    #[inline(always)]
+    fn bits_to_f32(self, a: [i32; W]) -> Lanes {
+        each!(|i| f32::from_bits(a[i] as u32))
+    }
+    #[inline(always)]
+    fn splat_i(self, x: i32) -> [i32; W] {
+        [x; W]
+    }
+    #[inline(always)]
+    fn load_i(self, a: &[i32; W]) -> [i32; W] {
+        *a
+    }
+    #[inline(always)]
+    fn add_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
+        each!(|i| a[i].wrapping_add(b[i]))
+    }
+    #[inline(always)]
+    fn sub_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
+        each!(|i| a[i].wrapping_sub(b[i]))
+    }
+    #[inline(always)]
+    fn shl23(self, a: [i32; W]) -> [i32; W] {
+        each!(|i| a[i].wrapping_shl(23))
+    }
+    #[inline(always)]
+    fn sar23(self, a: [i32; W]) -> [i32; W] {
+        each!(|i| a[i] >> 23)
+    }
+    #[inline(always)]
+    fn shr1(self, a: [i32; W]) -> [i32; W] {
+        each!(|i| ((a[i] as u32) >> 1) as i32)
+    }
+    #[inline(always)]
+    fn odd(self, a: [i32; W]) -> [bool; W] {
+        each!(|i| a[i] & 1 == 1)
+    }
+    #[inline(always)]
+    fn nonzero(self, a: [i32; W]) -> [bool; W] {
+        each!(|i| a[i] != 0)
+    }
+    #[inline(always)]
+    fn to_f32(self, a: [i32; W]) -> Lanes {
+        each!(|i| a[i] as f32)
+    }
+}
