@@ -631,16 +631,13 @@ pub(super) const BLINN_DEN_MIN: f32 = 1e-2;
 /// Scalar code, out of line: inlined, its loop and its formulas' branches would keep the kernel's
 /// vectors in memory for every light, spot and falloff or not.
 #[inline(never)]
-fn falloff(
-    d: &[Lanes; 3],
-    dd: &Lanes,
-    flat: FlatAttenuation,
-    spot: Option<SpotLight>,
-) -> ([Lanes; 3], Lanes) {
+fn falloff(d: &[Lanes; 3], flat: FlatAttenuation, spot: Option<SpotLight>) -> ([Lanes; 3], Lanes) {
     let [dx, dy, dz] = d;
     let (mut lx, mut ly, mut lz, mut att) = ([0.0f32; W], [0.0f32; W], [0.0f32; W], [0.0f32; W]);
     for i in 0..W {
-        let dist = math::sqrt(dd[i]);
+        // `length_squared`'s own sum (unfused, left to right), so the direction and distance are
+        // the scalar path's bit for bit: a spot exponent multiplies any difference in them.
+        let dist = math::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
         let inv = 1.0 / dist;
         (lx[i], ly[i], lz[i]) = (dx[i] * inv, dy[i] * inv, dz[i] * inv);
         let f = flat.factor(dist);
@@ -727,11 +724,16 @@ where
     let max = s.splat(math::MAX);
     let nn = dot(s, n, n);
     let mut ok = in_range(s, nn);
-    let inv_n = s.rsqrt(nn);
+    // N and V normalised first, as the scalar path does (its rounding is what the accuracy
+    // analysis and the fuzz campaign's ranges allow).
+    let rn = s.rsqrt(nn);
+    let n = &[s.mul(n[0], rn), s.mul(n[1], rn), s.mul(n[2], rn)];
+    let inv_n = one;
     let (v, inv_v) = match k.view {
         ViewK::At(e) => {
             let (d, vv) = offset_to(s, e, p, &mut ok);
-            (d, s.rsqrt(vv))
+            let r = s.rsqrt(vv);
+            ([s.mul(d[0], r), s.mul(d[1], r), s.mul(d[2], r)], one)
         }
         ViewK::Infinite(d) => (splat3(s, d), one),
     };
@@ -782,17 +784,13 @@ where
                 // `Attenuation::factor`: such lanes go to the scalar path.
                 ok = s.and(ok, s.lt(den, s.splat(f32::INFINITY)));
                 let att = s.div(one, s.max(den, s.splat(Attenuation::MIN_DENOMINATOR)));
-                (
-                    s.mul(dot(s, n, &d), s.mul(inv_n, inv)),
-                    d,
-                    s.mul(inv, inv_v),
-                    att,
-                )
+                let l = [s.mul(d[0], inv), s.mul(d[1], inv), s.mul(d[2], inv)];
+                (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
             }
             LaneLight::Falloff { position, spot, .. } => {
-                let (d, dd) = offset_to(s, position, p, &mut ok);
+                let (d, _) = offset_to(s, position, p, &mut ok);
                 let d = [s.store(d[0]), s.store(d[1]), s.store(d[2])];
-                let (l, att) = falloff(&d, &s.store(dd), light.flat, spot);
+                let (l, att) = falloff(&d, light.flat, spot);
                 let (l, att) = ([s.load(&l[0]), s.load(&l[1]), s.load(&l[2])], s.load(&att));
                 (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
             }
@@ -840,19 +838,15 @@ where
             // Per channel: amb += f·La' + f·vis·(max(N·L, 0)·Ld' + lobe·Ls'), the light's terms
             // summed first so the chains into `amb` stay short. The scale is in `ks`, and
             // nothing overflows.
+            // Per channel: amb += f·La' + f·vis·max(N·L, 0)·Ld' + f·vis·lobe·Ls' (the scale is
+            // in `ks`, and nothing overflows), in the scalar path's order.
+            let wd = s.mul(attv, nl0);
+            let ws = spec.map(|w| s.mul(attv, w));
             for c in 0..3 {
-                let t = match visibility {
-                    None => s.mul_add(nl0, ld[c], la[c]),
-                    Some(_) => s.mul(nl0, ld[c]),
-                };
-                let t = match spec {
-                    Some(w) => s.mul_add(w, ls[c], t),
-                    None => t,
-                };
-                amb[c] = match visibility {
-                    None => s.mul_add(att, t, amb[c]),
-                    Some(_) => s.mul_add(attv, t, s.mul_add(att, la[c], amb[c])),
-                };
+                amb[c] = s.add(amb[c], s.add(s.mul(att, la[c]), s.mul(wd, ld[c])));
+                if let Some(ws) = ws {
+                    amb[c] = s.add(amb[c], s.mul(ws, ls[c]));
+                }
             }
             continue;
         }
