@@ -681,7 +681,7 @@ struct Shading<'a, 's, M, L> {
     model: &'a M,
     material: &'a Material,
     scene: &'a Scene<'s, L>,
-    kernel: Option<kernel::Setup<'a, M, L>>,
+    kernel: Option<kernel::Setup<'a>>,
 }
 
 impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
@@ -756,7 +756,14 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
         out: SoaRgb<'_>,
     ) -> usize {
         match &self.kernel {
-            Some(k) => dispatch::run_level(self.level, k, pos, nor, inputs, out),
+            Some(k) => {
+                let call = kernel::CallOf {
+                    model: self.model,
+                    material: self.material,
+                    scene: self.scene,
+                };
+                dispatch::run_level(self.level, k, &call, pos, nor, inputs, out)
+            }
             None => scalar(self.model, self.material, self.scene, pos, nor, inputs, out),
         }
     }

@@ -185,11 +185,13 @@ fn cannot_overflow<L: BatchLight>(
     })
 }
 
-/// Everything constant over one call.
-pub(crate) struct Setup<'a, M, L> {
-    pub(crate) model: &'a M,
+/// Everything constant over one call that the kernel reads. It names no model or light type, so
+/// each level compiles the kernel once, not once per model and light type: what needs those types
+/// (lights past the first [`PREPARED`], the scalar path for flagged lanes) is behind [`Call`].
+pub(crate) struct Setup<'a> {
     pub(crate) material: &'a Material,
-    pub(crate) scene: &'a Scene<'a, L>,
+    /// How many lights the scene has.
+    pub(crate) lights: usize,
     pub(crate) lm: LaneModel,
     pub(crate) plan: PowPlan,
     /// Bases below this give a lobe below 2^-100; they are flushed to 0 before squaring so no
@@ -211,20 +213,85 @@ pub(crate) struct Setup<'a, M, L> {
     pub(crate) all_prepared: bool,
 }
 
-impl<M, L: BatchLight> Setup<'_, M, L> {
-    /// Light `j`, prepared.
-    #[inline(always)]
-    pub(crate) fn light(&self, j: usize) -> PreparedLight {
-        if self.all_prepared {
-            self.prepared[j % PREPARED]
-        } else {
-            prepare_light(&self.scene.lights[j], self.material, &self.lm)
+/// The call's model and scene with their types: the kernel's way out to them, as a trait object,
+/// so the kernel itself is compiled once per level.
+pub(crate) trait Call {
+    /// Light `j` of the scene, prepared.
+    fn light(&self, k: &Setup<'_>, j: usize) -> PreparedLight;
+
+    /// Re-shades the points `i + j` for each lane `j` in `bad` with the scalar path, reading
+    /// their inputs again from the slices (so the fast loop need not keep them alive) and
+    /// writing over the kernel's colours: [`shade`](crate::shade), or with per-point `inputs`,
+    /// [`Shader::shade_surface`] (which sanitises the raw surface) with the point's visibilities.
+    fn fixup(
+        &self,
+        pos: (&SoaVec3<'_>, &SoaVec3<'_>),
+        inputs: Option<&PointInputs<'_>>,
+        out: [&mut [f32]; 3],
+        i: usize,
+        bad: u32,
+    );
+}
+
+/// A call's model, material and scene: its [`Call`].
+pub(crate) struct CallOf<'a, 's, M, L> {
+    pub(crate) model: &'a M,
+    pub(crate) material: &'a Material,
+    pub(crate) scene: &'a Scene<'s, L>,
+}
+
+impl<M: BatchModel, L: BatchLight> Call for CallOf<'_, '_, M, L> {
+    fn light(&self, k: &Setup<'_>, j: usize) -> PreparedLight {
+        prepare_light(&self.scene.lights[j], self.material, &k.lm)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn fixup(
+        &self,
+        (pos, nor): (&SoaVec3<'_>, &SoaVec3<'_>),
+        inputs: Option<&PointInputs<'_>>,
+        out: [&mut [f32]; 3],
+        i: usize,
+        bad: u32,
+    ) {
+        let [r, g, b] = out;
+        let shader = Shader::for_one_point(self.model, self.material, self.scene);
+        for j in 0..W {
+            if bad & (1 << j) == 0 {
+                continue;
+            }
+            let at = i + j;
+            let p = Vec3::new(pos.x[at], pos.y[at], pos.z[at]);
+            let n = Vec3::new(nor.x[at], nor.y[at], nor.z[at]);
+            let c = match inputs {
+                None => crate::shade(self.model, self.material, self.scene, p, n),
+                Some(inputs) => {
+                    let surface = match inputs.surface(at, 1) {
+                        Some(r) => Surface {
+                            ambient: Vec3::new(r[0][0], r[1][0], r[2][0]),
+                            diffuse: Vec3::new(r[3][0], r[4][0], r[5][0]),
+                            specular: Vec3::new(r[6][0], r[7][0], r[8][0]),
+                            shininess: r[9][0],
+                        },
+                        None => Surface::of(self.material),
+                    };
+                    let vis = VisibilityFn(|l| inputs.visibility(l, at, 1)[0]);
+                    shader.shade_surface(p, n, &surface, vis)
+                }
+            }
+            .total();
+            (r[at], g[at], b[at]) = (c.x, c.y, c.z);
         }
     }
 }
 
-impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
-    pub(crate) fn new(model: &'a M, material: &'a Material, scene: &'a Scene<'a, L>) -> Self {
+impl<'a> Setup<'a> {
+    pub(crate) fn new<M: BatchModel, L: BatchLight>(
+        model: &M,
+        material: &'a Material,
+        scene: &Scene<'_, L>,
+    ) -> Self {
         let lm = model.lane_model(material.shininess());
         let plan = lm.pow.plan(lm.exponent);
         let flush = flush_below(plan);
@@ -253,9 +320,8 @@ impl<'a, M: BatchModel, L: BatchLight> Setup<'a, M, L> {
         Setup {
             prepared,
             all_prepared: scene.lights.len() <= PREPARED,
-            model,
+            lights: scene.lights.len(),
             material,
-            scene,
             lm,
             plan,
             flush,
@@ -705,9 +771,14 @@ impl<S: Simd> LightLanes<S> {
 /// the dot products run alongside the inverse square roots instead of after them, and the loop is
 /// bound by these dependency chains, not by the number of operations.
 #[inline(always)]
-fn chunk<S, M, L, const FOLDED: bool>(
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the level, the call, its way out to the scalar path, the chunk's lanes and inputs"
+)]
+fn chunk<S, const FOLDED: bool>(
     s: S,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     lights: &[LightLanes<S>; PREPARED],
     p: &[S::V; 3],
     n: &[S::V; 3],
@@ -716,8 +787,6 @@ fn chunk<S, M, L, const FOLDED: bool>(
 ) -> ([S::V; 3], u32)
 where
     S: Simd,
-    M: BatchModel,
-    L: BatchLight,
 {
     let zero = s.splat(0.0);
     let one = s.splat(1.0);
@@ -870,12 +939,12 @@ where
         }
         }};
     }
-    for j in 0..k.scene.lights.len() {
+    for j in 0..k.lights {
         let owned;
         let lj: &LightLanes<S> = if k.all_prepared {
             &lights[j % PREPARED]
         } else {
-            owned = LightLanes::new(s, k.light(j), FOLDED);
+            owned = LightLanes::new(s, call.light(k, j), FOLDED);
             &owned
         };
         add_light!(lj, j);
@@ -908,57 +977,14 @@ where
     (rgb, bad)
 }
 
-/// Re-shades the points `i + j` for each lane `j` in `bad` with the scalar path, reading their
-/// inputs again from the slices (so the fast loop need not keep them alive) and writing over the
-/// kernel's colours: [`shade`](crate::shade), or with per-point `inputs`,
-/// [`Shader::shade_surface`] (which sanitises the raw surface) with the point's visibilities.
-#[cold]
-#[inline(never)]
-fn fixup<M: BatchModel, L: BatchLight>(
-    k: &Setup<'_, M, L>,
-    (pos, nor): (&SoaVec3<'_>, &SoaVec3<'_>),
-    inputs: Option<&PointInputs<'_>>,
-    out: [&mut [f32]; 3],
-    i: usize,
-    bad: u32,
-) {
-    let [r, g, b] = out;
-    let shader = Shader::for_one_point(k.model, k.material, k.scene);
-    for j in 0..W {
-        if bad & (1 << j) == 0 {
-            continue;
-        }
-        let at = i + j;
-        let p = Vec3::new(pos.x[at], pos.y[at], pos.z[at]);
-        let n = Vec3::new(nor.x[at], nor.y[at], nor.z[at]);
-        let c = match inputs {
-            None => crate::shade(k.model, k.material, k.scene, p, n),
-            Some(inputs) => {
-                let surface = match inputs.surface(at, 1) {
-                    Some(r) => Surface {
-                        ambient: Vec3::new(r[0][0], r[1][0], r[2][0]),
-                        diffuse: Vec3::new(r[3][0], r[4][0], r[5][0]),
-                        specular: Vec3::new(r[6][0], r[7][0], r[8][0]),
-                        shininess: r[9][0],
-                    },
-                    None => Surface::of(k.material),
-                };
-                let vis = VisibilityFn(|l| inputs.visibility(l, at, 1)[0]);
-                shader.shade_surface(p, n, &surface, vis)
-            }
-        }
-        .total();
-        (r[at], g[at], b[at]) = (c.x, c.y, c.z);
-    }
-}
-
 /// Runs the kernel at level `S` over the common prefix of the slices; returns its length.
 /// `INPUTS` says whether `inputs` may hold per-point inputs: each level compiles both as separate
 /// functions, so the plain calls' loop is not grown by the G-buffer's instances.
 #[inline(always)]
-pub(crate) fn run<S: Simd, M: BatchModel, L: BatchLight, const INPUTS: bool>(
+pub(crate) fn run<S: Simd, const INPUTS: bool>(
     s: S,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
@@ -966,18 +992,18 @@ pub(crate) fn run<S: Simd, M: BatchModel, L: BatchLight, const INPUTS: bool>(
 ) -> usize {
     if !INPUTS {
         return if k.folded {
-            run_with::<S, M, L, true, false, false>(s, k, pos, nor, inputs, out)
+            run_with::<S, true, false, false>(s, k, call, pos, nor, inputs, out)
         } else {
-            run_with::<S, M, L, false, false, false>(s, k, pos, nor, inputs, out)
+            run_with::<S, false, false, false>(s, k, call, pos, nor, inputs, out)
         };
     }
     match (inputs.per_point_surface(), inputs.visibility.is_some()) {
         (false, _) if k.folded => {
-            run_with::<S, M, L, true, false, true>(s, k, pos, nor, inputs, out)
+            run_with::<S, true, false, true>(s, k, call, pos, nor, inputs, out)
         }
-        (false, _) => run_with::<S, M, L, false, false, true>(s, k, pos, nor, inputs, out),
-        (true, false) => run_with::<S, M, L, false, true, false>(s, k, pos, nor, inputs, out),
-        (true, true) => run_with::<S, M, L, false, true, true>(s, k, pos, nor, inputs, out),
+        (false, _) => run_with::<S, false, false, true>(s, k, call, pos, nor, inputs, out),
+        (true, false) => run_with::<S, false, true, false>(s, k, call, pos, nor, inputs, out),
+        (true, true) => run_with::<S, false, true, true>(s, k, call, pos, nor, inputs, out),
     }
 }
 
@@ -994,9 +1020,10 @@ pub(crate) fn has_inputs(inputs: &PointInputs<'_>) -> bool {
     clippy::too_many_arguments,
     reason = "the level, the call, the chunk's lanes and where they are"
 )]
-fn shade_chunk<S, M, L, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+fn shade_chunk<S, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
     s: S,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     lights: &[LightLanes<S>; PREPARED],
     p: [Lanes; 3],
     n: [Lanes; 3],
@@ -1006,8 +1033,6 @@ fn shade_chunk<S, M, L, const FOLDED: bool, const SURFACE: bool, const VISIBILIT
 ) -> ([S::V; 3], u32)
 where
     S: Simd,
-    M: BatchModel,
-    L: BatchLight,
 {
     let raw = if SURFACE {
         inputs.surface(i, count)
@@ -1028,9 +1053,10 @@ where
     } else {
         None
     };
-    chunk::<S, M, L, FOLDED>(
+    chunk::<S, FOLDED>(
         s,
         k,
+        call,
         lights,
         &[s.load(&p[0]), s.load(&p[1]), s.load(&p[2])],
         &[s.load(&n[0]), s.load(&n[1]), s.load(&n[2])],
@@ -1041,9 +1067,10 @@ where
 
 /// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present.
 #[inline(always)]
-fn run_with<S, M, L, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
+fn run_with<S, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: bool>(
     s: S,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
@@ -1051,8 +1078,6 @@ fn run_with<S, M, L, const FOLDED: bool, const SURFACE: bool, const VISIBILITY: 
 ) -> usize
 where
     S: Simd,
-    M: BatchModel,
-    L: BatchLight,
 {
     let len = pos.len().min(nor.len()).min(out.len());
     let pos = SoaVec3 {
@@ -1076,9 +1101,10 @@ where
     let full = len / W * W;
     let mut i = 0;
     while i < full {
-        let (c, bad) = shade_chunk::<S, M, L, FOLDED, SURFACE, VISIBILITY>(
+        let (c, bad) = shade_chunk::<S, FOLDED, SURFACE, VISIBILITY>(
             s,
             k,
+            call,
             &lights,
             [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
             [load(nor.x, i), load(nor.y, i), load(nor.z, i)],
@@ -1090,16 +1116,17 @@ where
         store(&mut g[i..i + W], s.store(c[1]));
         store(&mut b[i..i + W], s.store(c[2]));
         if bad != 0 {
-            fixup(k, (&pos, &nor), per_point, [r, g, b], i, bad);
+            call.fixup((&pos, &nor), per_point, [r, g, b], i, bad);
         }
         i += W;
     }
     if i < len {
         let count = len - i;
         // The padding lanes are shaded too (zero normals: flagged) and fixed only up to `count`.
-        let (c, bad) = shade_chunk::<S, M, L, FOLDED, SURFACE, VISIBILITY>(
+        let (c, bad) = shade_chunk::<S, FOLDED, SURFACE, VISIBILITY>(
             s,
             k,
+            call,
             &lights,
             [
                 load_tail(pos.x, i, count),
@@ -1120,7 +1147,7 @@ where
         b[i..].copy_from_slice(&s.store(c[2])[..count]);
         let bad = bad & ((1u32 << count) - 1);
         if bad != 0 {
-            fixup(k, (&pos, &nor), per_point, [r, g, b], i, bad);
+            call.fixup((&pos, &nor), per_point, [r, g, b], i, bad);
         }
     }
     len

@@ -5,8 +5,7 @@
     reason = "AVX2 and FMA intrinsics, called only through an `Avx2` token, which exists only where the CPU has both"
 )]
 
-use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
-use crate::batch::prepare::{BatchLight, BatchModel};
+use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
 use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::x86_64::{
     __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
@@ -35,24 +34,26 @@ simd_by_parts!(Avx2, [0, 1], __m256, __m256i, __m256, native);
 
 /// The kernel compiled for AVX2 and FMA.
 #[target_feature(enable = "avx2,fma")]
-fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+fn kernel<const INPUTS: bool>(
     t: Avx2,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run::<Avx2, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+    run::<Avx2, INPUTS>(t, k, call, pos, nor, inputs, out)
 }
 
 impl Avx2 {
     /// Runs the batch kernel at this level over the common prefix of the slices; returns its
     /// length. Calls with and without per-point inputs are separate functions, so the plain
     /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+    pub(crate) fn run(
         self,
-        k: &Setup<'_, M, L>,
+        k: &Setup<'_>,
+        call: &dyn Call,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &PointInputs<'_>,
@@ -62,9 +63,9 @@ impl Avx2 {
         // enables.
         unsafe {
             if has_inputs(inputs) {
-                kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+                kernel::<true>(self, k, call, pos, nor, inputs, out)
             } else {
-                kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+                kernel::<false>(self, k, call, pos, nor, inputs, out)
             }
         }
     }

@@ -6,8 +6,7 @@
     reason = "AVX-512 intrinsics, called only through an `Avx512` token, which exists only where the CPU has AVX-512F/VL, AVX2 and FMA"
 )]
 
-use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
-use crate::batch::prepare::{BatchLight, BatchModel};
+use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
 use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::x86_64::{
     __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _mm512_add_epi32, _mm512_add_ps,
@@ -36,24 +35,26 @@ simd_by_parts!(Avx512, [0], __m512, __m512i, __mmask16, native);
 
 /// The kernel compiled for AVX-512F, AVX-512VL, AVX2 and FMA.
 #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+fn kernel<const INPUTS: bool>(
     t: Avx512,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run::<Avx512, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+    run::<Avx512, INPUTS>(t, k, call, pos, nor, inputs, out)
 }
 
 impl Avx512 {
     /// Runs the batch kernel at this level over the common prefix of the slices; returns its
     /// length. Calls with and without per-point inputs are separate functions, so the plain
     /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+    pub(crate) fn run(
         self,
-        k: &Setup<'_, M, L>,
+        k: &Setup<'_>,
+        call: &dyn Call,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &PointInputs<'_>,
@@ -63,9 +64,9 @@ impl Avx512 {
         // enables.
         unsafe {
             if has_inputs(inputs) {
-                kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+                kernel::<true>(self, k, call, pos, nor, inputs, out)
             } else {
-                kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+                kernel::<false>(self, k, call, pos, nor, inputs, out)
             }
         }
     }

@@ -10,8 +10,7 @@
     reason = "NEON intrinsics: this module is compiled only where the build enables NEON"
 )]
 
-use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
-use crate::batch::prepare::{BatchLight, BatchModel};
+use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
 use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::aarch64::{
     float32x4_t, int32x4_t, uint32x4_t, vaddq_f32, vaddq_s32, vaddvq_u32, vandq_u32, vbslq_f32,
@@ -35,33 +34,35 @@ simd_by_parts!(
 
 /// The kernel at this level.
 #[inline(never)]
-fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+fn kernel<const INPUTS: bool>(
     t: Neon,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run::<Neon, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+    run::<Neon, INPUTS>(t, k, call, pos, nor, inputs, out)
 }
 
 impl Neon {
     /// Runs the batch kernel at this level over the common prefix of the slices; returns its
     /// length. Calls with and without per-point inputs are separate functions, so the plain
     /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+    pub(crate) fn run(
         self,
-        k: &Setup<'_, M, L>,
+        k: &Setup<'_>,
+        call: &dyn Call,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &PointInputs<'_>,
         out: SoaRgb<'_>,
     ) -> usize {
         if has_inputs(inputs) {
-            kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+            kernel::<true>(self, k, call, pos, nor, inputs, out)
         } else {
-            kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+            kernel::<false>(self, k, call, pos, nor, inputs, out)
         }
     }
 }

@@ -3,9 +3,8 @@
 //! `1 / sqrt(x)`.
 
 use super::super::simd::Simd;
+use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
 use crate::batch::kernel::{Lanes, W};
-use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
-use crate::batch::prepare::{BatchLight, BatchModel};
 use crate::batch::soa::{SoaRgb, SoaVec3};
 use crate::math;
 
@@ -26,33 +25,35 @@ macro_rules! each {
 
 /// The kernel at this level.
 #[inline(never)]
-fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+fn kernel<const INPUTS: bool>(
     t: Portable,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run::<Portable, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+    run::<Portable, INPUTS>(t, k, call, pos, nor, inputs, out)
 }
 
 impl Portable {
     /// Runs the batch kernel at this level over the common prefix of the slices; returns its
     /// length. Calls with and without per-point inputs are separate functions, so the plain
     /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+    pub(crate) fn run(
         self,
-        k: &Setup<'_, M, L>,
+        k: &Setup<'_>,
+        call: &dyn Call,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &PointInputs<'_>,
         out: SoaRgb<'_>,
     ) -> usize {
         if has_inputs(inputs) {
-            kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+            kernel::<true>(self, k, call, pos, nor, inputs, out)
         } else {
-            kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+            kernel::<false>(self, k, call, pos, nor, inputs, out)
         }
     }
 }

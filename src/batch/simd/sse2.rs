@@ -8,8 +8,7 @@
     reason = "SSE intrinsics: SSE2 is part of the x86_64 baseline, so every x86_64 CPU runs them"
 )]
 
-use crate::batch::kernel::{PointInputs, Setup, has_inputs, run};
-use crate::batch::prepare::{BatchLight, BatchModel};
+use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
 use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
@@ -27,33 +26,35 @@ simd_by_parts!(Sse2, [0, 1, 2, 3], __m128, __m128i, __m128, native);
 
 /// The kernel at this level.
 #[inline(never)]
-fn kernel<M: BatchModel, L: BatchLight, const INPUTS: bool>(
+fn kernel<const INPUTS: bool>(
     t: Sse2,
-    k: &Setup<'_, M, L>,
+    k: &Setup<'_>,
+    call: &dyn Call,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &PointInputs<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run::<Sse2, M, L, INPUTS>(t, k, pos, nor, inputs, out)
+    run::<Sse2, INPUTS>(t, k, call, pos, nor, inputs, out)
 }
 
 impl Sse2 {
     /// Runs the batch kernel at this level over the common prefix of the slices; returns its
     /// length. Calls with and without per-point inputs are separate functions, so the plain
     /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run<M: BatchModel, L: BatchLight>(
+    pub(crate) fn run(
         self,
-        k: &Setup<'_, M, L>,
+        k: &Setup<'_>,
+        call: &dyn Call,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &PointInputs<'_>,
         out: SoaRgb<'_>,
     ) -> usize {
         if has_inputs(inputs) {
-            kernel::<M, L, true>(self, k, pos, nor, inputs, out)
+            kernel::<true>(self, k, call, pos, nor, inputs, out)
         } else {
-            kernel::<M, L, false>(self, k, pos, nor, inputs, out)
+            kernel::<false>(self, k, call, pos, nor, inputs, out)
         }
     }
 }
