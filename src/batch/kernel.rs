@@ -793,16 +793,11 @@ where
     let max = s.splat(math::MAX);
     let nn = dot(s, n, n);
     let mut ok = in_range(s, nn);
-    // N and V normalised first, as the scalar path does (its rounding is what the accuracy
-    // analysis and the fuzz campaign's ranges allow).
-    let rn = s.rsqrt(nn);
-    let n = &[s.mul(n[0], rn), s.mul(n[1], rn), s.mul(n[2], rn)];
-    let inv_n = one;
+    let inv_n = s.rsqrt(nn);
     let (v, inv_v) = match k.view {
         ViewK::At(e) => {
             let (d, vv) = offset_to(s, e, p, &mut ok);
-            let r = s.rsqrt(vv);
-            ([s.mul(d[0], r), s.mul(d[1], r), s.mul(d[2], r)], one)
+            (d, s.rsqrt(vv))
         }
         ViewK::Infinite(d) => (splat3(s, d), one),
     };
@@ -853,8 +848,12 @@ where
                 // `Attenuation::factor`: such lanes go to the scalar path.
                 ok = s.and(ok, s.lt(den, s.splat(f32::INFINITY)));
                 let att = s.div(one, s.max(den, s.splat(Attenuation::MIN_DENOMINATOR)));
-                let l = [s.mul(d[0], inv), s.mul(d[1], inv), s.mul(d[2], inv)];
-                (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
+                (
+                    s.mul(dot(s, n, &d), s.mul(inv_n, inv)),
+                    d,
+                    s.mul(inv, inv_v),
+                    att,
+                )
             }
             LaneLight::Falloff { position, spot, .. } => {
                 let (d, _) = offset_to(s, position, p, &mut ok);
@@ -907,15 +906,19 @@ where
             // Per channel: amb += f·La' + f·vis·(max(N·L, 0)·Ld' + lobe·Ls'), the light's terms
             // summed first so the chains into `amb` stay short. The scale is in `ks`, and
             // nothing overflows.
-            // Per channel: amb += f·La' + f·vis·max(N·L, 0)·Ld' + f·vis·lobe·Ls' (the scale is
-            // in `ks`, and nothing overflows), in the scalar path's order.
-            let wd = s.mul(attv, nl0);
-            let ws = spec.map(|w| s.mul(attv, w));
             for c in 0..3 {
-                amb[c] = s.add(amb[c], s.add(s.mul(att, la[c]), s.mul(wd, ld[c])));
-                if let Some(ws) = ws {
-                    amb[c] = s.add(amb[c], s.mul(ws, ls[c]));
-                }
+                let t = match visibility {
+                    None => s.mul_add(nl0, ld[c], la[c]),
+                    Some(_) => s.mul(nl0, ld[c]),
+                };
+                let t = match spec {
+                    Some(w) => s.mul_add(w, ls[c], t),
+                    None => t,
+                };
+                amb[c] = match visibility {
+                    None => s.mul_add(att, t, amb[c]),
+                    Some(_) => s.mul_add(attv, t, s.mul_add(att, la[c], amb[c])),
+                };
             }
             continue;
         }
