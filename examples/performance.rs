@@ -913,11 +913,19 @@ fn main() {
     let _ = writeln!(
         md,
         "\n## Dispatch levels\n\nThe batch path forced to each level this CPU runs \
-         (`PowStrategy::Auto`, N = 4096 for speed, 2²⁰ points for accuracy):\n"
+         (`PowStrategy::Auto`, N = 4096 for speed, 2²⁰ points for accuracy). `÷ AVX-512` is the \
+         level's throughput over the AVX-512 level's for the same model and shininess, in this \
+         run. `259b7f8` is the same bench at commit 259b7f8 (the AVX-512 intrinsics kernel and \
+         the auto-vectorised levels that the one kernel source replaced), run just before this \
+         run on the same machine and saved as criterion baseline `b259`:\n\n\
+         ```text\ngit worktree add /tmp/b259 259b7f8 && (cd /tmp/b259 && cargo bench --bench \
+         shading --no-run)\n/tmp/b259/target/release/deps/shading-<hash> --bench levels_4096 \
+         --save-baseline b259   # run from this repository's root\n```\n"
     );
     let _ = writeln!(
         md,
-        "| level | model | s | Mpts/s | max abs error | 8-bit mismatch |\n|---|---|---:|---:|---:|---:|"
+        "| level | model | s | Mpts/s | ÷ AVX-512 | 259b7f8 Mpts/s | max abs error | 8-bit mismatch |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|"
     );
     for lv in Level::supported() {
         for kind in [Kind::Phong, Kind::Blinn] {
@@ -934,11 +942,25 @@ fn main() {
                     4096,
                     "new",
                 );
+                let top = mpts(
+                    "levels_4096",
+                    &format!("{}/avx512_{}", kind.name(), s),
+                    4096,
+                    "new",
+                );
+                let before = mpts(
+                    "levels_4096",
+                    &format!("{}/{}_{}", kind.name(), lv.name(), s),
+                    4096,
+                    "b259",
+                );
                 let _ = writeln!(
                     md,
-                    "| {lv} | {} | {s} | {} | {:.1e} | {:.2e} |",
+                    "| {lv} | {} | {s} | {} | {} | {} | {:.1e} | {:.2e} |",
                     kind.name(),
                     fmt_opt(speed, 0),
+                    fmt_opt(speed.zip(top).map(|(a, b)| a / b), 2),
+                    fmt_opt(before, 0),
                     acc.max_abs,
                     acc.mismatch
                 );
