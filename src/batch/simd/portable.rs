@@ -12,6 +12,12 @@ use crate::math;
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Portable;
 
+/// A lane's mask: all ones for `true`, 0 for `false`.
+#[inline(always)]
+fn mask(b: bool) -> u32 {
+    0u32.wrapping_sub(u32::from(b))
+}
+
 /// `[f(0), f(1), …, f(15)]`.
 macro_rules! each {
     (|$i:ident| $e:expr) => {{
@@ -61,7 +67,9 @@ impl Portable {
 impl Simd for Portable {
     type V = Lanes;
     type I = [i32; W];
-    type M = [bool; W];
+    /// All ones where set, 0 where not (as the vector levels' masks), so the compiler can
+    /// vectorise the selects as bit operations.
+    type M = [u32; W];
 
     #[inline(always)]
     fn splat(self, x: f32) -> Lanes {
@@ -112,38 +120,38 @@ impl Simd for Portable {
         each!(|i| 1.0 / math::sqrt(x[i]))
     }
     #[inline(always)]
-    fn lt(self, a: Lanes, b: Lanes) -> [bool; W] {
-        each!(|i| a[i] < b[i])
+    fn lt(self, a: Lanes, b: Lanes) -> [u32; W] {
+        each!(|i| mask(a[i] < b[i]))
     }
     #[inline(always)]
-    fn le(self, a: Lanes, b: Lanes) -> [bool; W] {
-        each!(|i| a[i] <= b[i])
+    fn le(self, a: Lanes, b: Lanes) -> [u32; W] {
+        each!(|i| mask(a[i] <= b[i]))
     }
     #[inline(always)]
-    fn gt(self, a: Lanes, b: Lanes) -> [bool; W] {
-        each!(|i| a[i] > b[i])
+    fn gt(self, a: Lanes, b: Lanes) -> [u32; W] {
+        each!(|i| mask(a[i] > b[i]))
     }
     #[inline(always)]
-    fn ge(self, a: Lanes, b: Lanes) -> [bool; W] {
-        each!(|i| a[i] >= b[i])
+    fn ge(self, a: Lanes, b: Lanes) -> [u32; W] {
+        each!(|i| mask(a[i] >= b[i]))
     }
     #[inline(always)]
-    fn and(self, a: [bool; W], b: [bool; W]) -> [bool; W] {
+    fn and(self, a: [u32; W], b: [u32; W]) -> [u32; W] {
         each!(|i| a[i] & b[i])
     }
     #[inline(always)]
-    fn select(self, m: [bool; W], a: Lanes, b: Lanes) -> Lanes {
-        each!(|i| if m[i] { a[i] } else { b[i] })
+    fn select(self, m: [u32; W], a: Lanes, b: Lanes) -> Lanes {
+        each!(|i| f32::from_bits((a[i].to_bits() & m[i]) | (b[i].to_bits() & !m[i])))
     }
     #[inline(always)]
-    fn keep(self, m: [bool; W], a: Lanes) -> Lanes {
-        each!(|i| if m[i] { a[i] } else { 0.0 })
+    fn keep(self, m: [u32; W], a: Lanes) -> Lanes {
+        each!(|i| f32::from_bits(a[i].to_bits() & m[i]))
     }
     #[inline(always)]
-    fn bits(self, m: [bool; W]) -> u32 {
+    fn bits(self, m: [u32; W]) -> u32 {
         let mut b = 0;
         for (i, &set) in m.iter().enumerate() {
-            b |= u32::from(set) << i;
+            b |= (set & 1) << i;
         }
         b
     }
@@ -184,12 +192,12 @@ impl Simd for Portable {
         each!(|i| ((a[i] as u32) >> 1) as i32)
     }
     #[inline(always)]
-    fn odd(self, a: [i32; W]) -> [bool; W] {
-        each!(|i| a[i] & 1 == 1)
+    fn odd(self, a: [i32; W]) -> [u32; W] {
+        each!(|i| mask(a[i] & 1 == 1))
     }
     #[inline(always)]
-    fn nonzero(self, a: [i32; W]) -> [bool; W] {
-        each!(|i| a[i] != 0)
+    fn nonzero(self, a: [i32; W]) -> [u32; W] {
+        each!(|i| mask(a[i] != 0))
     }
     #[inline(always)]
     fn to_f32(self, a: [i32; W]) -> Lanes {
