@@ -35,6 +35,7 @@ use crate::gate::SpecularGate;
 use crate::light::SpotLight;
 use crate::material::Material;
 use crate::math;
+use crate::reflection::normalization::Normalization;
 use crate::pow::{
     EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, auto_split, lobe_pow,
 };
@@ -369,6 +370,11 @@ fn load(s: &[f32], i: usize) -> Lanes {
 
 #[inline(always)]
 pub(crate) fn load_tail(s: &[f32], i: usize, count: usize) -> Lanes {
+    // A whole chunk by a fixed-size load: a copy of variable length is a call to `memcpy`, ten
+    // of them a chunk for a G-buffer's surface, where the compiler does not see `count == W`.
+    if count == W {
+        return load(s, i);
+    }
     let mut a = [0.0f32; W];
     a[..count].copy_from_slice(&s[i..i + count]);
     a
@@ -411,9 +417,14 @@ impl PointInputs<'_> {
     pub(crate) fn visibility(&self, j: usize, i: usize, count: usize) -> Lanes {
         match self.visibility {
             Some((v, stride)) => {
-                let mut a = [1.0f32; W];
-                a[..count].copy_from_slice(&v[j * stride + i..j * stride + i + count]);
-                a
+                let at = j * stride + i;
+                if count == W {
+                    load(v, at)
+                } else {
+                    let mut a = [1.0f32; W];
+                    a[..count].copy_from_slice(&v[at..at + count]);
+                    a
+                }
             }
             None => [1.0; W],
         }
@@ -423,17 +434,27 @@ impl PointInputs<'_> {
     /// `Ka` and `Kd` multiplied by the decoded albedo where there is one. `None` without either.
     #[inline(always)]
     pub(crate) fn surface(&self, i: usize, count: usize) -> Option<[Lanes; 10]> {
-        let mut raw = match self.surface {
+        let mut raw = [[0.0f32; W]; 10];
+        self.surface_into(i, count, &mut raw).then_some(raw)
+    }
+
+    /// [`surface`](Self::surface) written into `raw` (whether there is one): the kernel's form,
+    /// since moving the 640-byte array by value cost a `memcpy` call or more per chunk.
+    #[inline(always)]
+    pub(crate) fn surface_into(&self, i: usize, count: usize, raw: &mut [Lanes; 10]) -> bool {
+        match self.surface {
             Some(slices) => {
-                let mut raw = [[0.0f32; W]; 10];
                 for (r, a) in raw.iter_mut().zip(slices) {
-                    r[..count].copy_from_slice(&a[i..i + count]);
+                    *r = load_tail(a, i, count);
                 }
-                raw
             }
-            None if self.albedo.is_some() => self.base.map(|b| [b; W]),
-            None => return None,
-        };
+            None if self.albedo.is_some() => {
+                for (r, b) in raw.iter_mut().zip(self.base) {
+                    *r = [b; W];
+                }
+            }
+            None => return false,
+        }
         if let Some(albedo) = self.albedo {
             for (lane, texel) in albedo[i..i + count].iter().enumerate() {
                 for c in 0..3 {
@@ -443,7 +464,7 @@ impl PointInputs<'_> {
                 }
             }
         }
-        Some(raw)
+        true
     }
 }
 
@@ -578,53 +599,73 @@ pub(crate) struct SurfaceV<S: Simd> {
 impl<S: Simd> SurfaceV<S> {
     #[inline(always)]
     fn new(s: S, lm: &LaneModel, raw: &[Lanes; 10]) -> Self {
-        let clean = |c: &Lanes| -> Lanes {
-            let mut r = *c;
-            for x in &mut r {
-                *x = math::clamp_or_lo(*x, 0.0, math::MAX);
-            }
-            r
-        };
         let sh = clean(&raw[9]);
-        let norm = lm.normalization;
-        let mut scale = [0.0f32; W];
+        let scale = lane_scales(lm, &sh);
+        let half = if lm.lobe == Lobe::Blinn { 0.5 } else { 1.0 };
         let mut whole = [0i32; W];
         let mut frac = [0.0f32; W];
         let mut or = 0u32;
         for i in 0..W {
-            let e = if lm.lobe == Lobe::Blinn {
-                0.5 * sh[i]
-            } else {
-                sh[i]
-            };
-            scale[i] = match lm.lobe {
-                Lobe::None => 0.0,
-                _ if !norm.is_normalized() => 1.0,
-                Lobe::Phong => norm.phong_factor(sh[i]),
-                Lobe::Blinn => norm.blinn_factor(sh[i]),
-            };
-            let (n, f) = auto_split(e);
+            let (n, f) = auto_split(half * sh[i]);
             or |= n;
             whole[i] = n as i32;
             frac[i] = f;
         }
-        let v3 = |a: usize| {
-            [
-                s.load(&clean(&raw[a])),
-                s.load(&clean(&raw[a + 1])),
-                s.load(&clean(&raw[a + 2])),
-            ]
-        };
+        // A macro, not a closure: a closure may be left out of line, without the level's features.
+        macro_rules! v3 {
+            ($a:expr) => {
+                [
+                    s.load(&clean(&raw[$a])),
+                    s.load(&clean(&raw[$a + 1])),
+                    s.load(&clean(&raw[$a + 2])),
+                ]
+            };
+        }
         SurfaceV {
-            ka: v3(0),
-            kd: v3(3),
-            ks: v3(6),
+            ka: v3!(0),
+            kd: v3!(3),
+            ks: v3!(6),
             scale: s.load(&scale),
             whole: s.load_i(&whole),
             frac: s.load(&frac),
             steps: 32 - or.leading_zeros(),
             any_frac: frac.iter().any(|&f| f != 0.0),
         }
+    }
+}
+
+/// `c` with NaN and negatives as 0 and values past `f32::MAX` as `f32::MAX` (`Material::new`'s
+/// rule), lane by lane.
+#[inline(always)]
+fn clean(c: &Lanes) -> Lanes {
+    let mut r = *c;
+    for x in &mut r {
+        *x = math::clamp_or_lo(*x, 0.0, math::MAX);
+    }
+    r
+}
+
+/// Each lane's specular normalisation factor for its shininess. The matches are outside the
+/// loops: inside, the compiler evaluates every arm for every lane and selects, which called
+/// `exp2f` (the exact Blinn-Phong factor's `2^(−s/2)`) sixteen times a chunk for every model.
+#[inline(always)]
+fn lane_scales(lm: &LaneModel, sh: &Lanes) -> Lanes {
+    // A macro, not a closure: a closure may be left out of line, without the level's features.
+    macro_rules! each {
+        ($f:expr) => {{
+            let mut r = [0.0f32; W];
+            for (r, &s) in r.iter_mut().zip(sh) {
+                *r = $f(s);
+            }
+            r
+        }};
+    }
+    match (lm.lobe, lm.normalization) {
+        (Lobe::None, _) => [0.0; W],
+        (_, Normalization::None) => [1.0; W],
+        (Lobe::Phong, norm) => each!(|s| norm.phong_factor(s)),
+        (Lobe::Blinn, Normalization::Energy) => each!(|s| Normalization::Energy.blinn_factor(s)),
+        (Lobe::Blinn, norm) => each!(|s| norm.blinn_factor(s)),
     }
 }
 
@@ -1074,19 +1115,11 @@ fn shade_chunk<
 where
     S: Simd,
 {
-    let raw = if SURFACE {
-        inputs.surface(i, count)
+    let mut raw = [[0.0f32; W]; 10];
+    let surface = if SURFACE && inputs.surface_into(i, count, &mut raw) {
+        Some(SurfaceV::new(s, &k.lm, &raw))
     } else {
         None
-    };
-    // A match, not `Option::map`: a closure may be left out of line, without the level's features.
-    #[allow(
-        clippy::manual_map,
-        reason = "a closure may be left out of line, without the level's target features"
-    )]
-    let surface = match raw {
-        Some(raw) => Some(SurfaceV::new(s, &k.lm, &raw)),
-        None => None,
     };
     let visibility = if VISIBILITY {
         Some((inputs, i, count))
