@@ -35,10 +35,10 @@ use crate::gate::SpecularGate;
 use crate::light::SpotLight;
 use crate::material::Material;
 use crate::math;
-use crate::reflection::normalization::Normalization;
 use crate::pow::{
     EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, auto_split, lobe_pow,
 };
+use crate::reflection::normalization::Normalization;
 use crate::shade::{Scene, Viewer};
 use crate::shader::Shader;
 use crate::surface::Surface;
