@@ -818,8 +818,8 @@ fn main() {
          NEON's inverse square root (`frsqrte` and two Newton steps by `frsqrts`) in place of a \
          square root and a division per lane. CI cross-compiles the crate's whole test suite for \
          `aarch64-unknown-linux-gnu` and runs it under qemu, so the batch-vs-scalar comparisons \
-         run there at the `Portable` and `Neon` levels (a `Neon` level with one Newton step \
-         instead of two fails 8 of the 17 batch tests). Nothing here measures aarch64 speed: \
+         run there at the `Portable` and `Neon` levels (with the earlier NEON loops, one Newton \
+         step instead of two failed 8 of the 17 batch tests). Nothing here measures aarch64 speed: \
          qemu's timings say nothing about a real core, and the qemu here has no plugin support \
          for counting executed instructions. (Static counts of the earlier, auto-vectorised \
          kernel were recorded before it was replaced by the one source; they have not been \
