@@ -762,7 +762,15 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
                     material: self.material,
                     scene: self.scene,
                 };
-                dispatch::run_level(self.level, k, &call, pos, nor, inputs, out)
+                let job = kernel::Job {
+                    setup: k,
+                    call: &call,
+                    pos,
+                    nor,
+                    inputs,
+                    out,
+                };
+                dispatch::run_level(self.level, job)
             }
             None => scalar(self.model, self.material, self.scene, pos, nor, inputs, out),
         }

@@ -1,43 +1,34 @@
 //! Which level's kernel runs a call: the level's token, where the CPU has its instructions.
 
-use super::kernel::{Call, PointInputs, Setup};
+use super::kernel::Job;
 use super::level::Level;
 use super::simd::portable::Portable;
-use super::soa::{SoaRgb, SoaVec3};
 
 /// Runs the kernel compiled for `level`. A level that is not supported (or does not exist on this
 /// architecture) runs the portable kernel; callers check `level.is_supported()` first.
-pub(super) fn run_level(
-    level: Level,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
+pub(super) fn run_level(level: Level, job: Job<'_>) -> usize {
     #[cfg(target_arch = "x86_64")]
     {
         use super::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
         match level {
             Level::Avx512 => {
                 if let Some(t) = Avx512::new() {
-                    return t.run(k, call, pos, nor, inputs, out);
+                    return t.run(job);
                 }
             }
             Level::Avx2 => {
                 if let Some(t) = Avx2::new() {
-                    return t.run(k, call, pos, nor, inputs, out);
+                    return t.run(job);
                 }
             }
-            Level::Sse2 => return Sse2.run(k, call, pos, nor, inputs, out),
+            Level::Sse2 => return Sse2.run(job),
             _ => {}
         }
     }
     #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
     if level == Level::Neon {
-        return super::simd::neon::Neon.run(k, call, pos, nor, inputs, out);
+        return super::simd::neon::Neon.run(job);
     }
     let _ = level;
-    Portable.run(k, call, pos, nor, inputs, out)
+    Portable.run(job)
 }

@@ -239,6 +239,17 @@ pub(crate) trait Call {
     );
 }
 
+/// One kernel call, as dispatch hands it to a level: the call's setup and its way out to the
+/// scalar path, the point slices, the per-point inputs and the output.
+pub(crate) struct Job<'a> {
+    pub(crate) setup: &'a Setup<'a>,
+    pub(crate) call: &'a dyn Call,
+    pub(crate) pos: SoaVec3<'a>,
+    pub(crate) nor: SoaVec3<'a>,
+    pub(crate) inputs: &'a PointInputs<'a>,
+    pub(crate) out: SoaRgb<'a>,
+}
+
 /// A call's model, material and scene: its [`Call`].
 pub(crate) struct CallOf<'a, 's, M, L> {
     pub(crate) model: &'a M,
@@ -1047,15 +1058,15 @@ where
 /// `INPUTS` says whether `inputs` may hold per-point inputs: each level compiles both as separate
 /// functions, so the plain calls' loop is not grown by the G-buffer's instances.
 #[inline(always)]
-pub(crate) fn run<S: Simd, const INPUTS: bool>(
-    s: S,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
+pub(crate) fn run<S: Simd, const INPUTS: bool>(s: S, job: Job<'_>) -> usize {
+    let Job {
+        setup: k,
+        call,
+        pos,
+        nor,
+        inputs,
+        out,
+    } = job;
     if !INPUTS {
         return match (k.folded, k.calls_out) {
             (true, false) => {

@@ -104,6 +104,58 @@ pub(crate) trait Simd: Copy {
     fn to_f32(self, a: Self::I) -> Self::V;
 }
 
+/// A level's entry: `kernel`, the loop compiled for the level, and the token's `run`, which calls
+/// it with or without per-point inputs (two functions, so the plain calls' loop is not grown by
+/// the G-buffer's instances). With a feature list the kernel is compiled inside
+/// `#[target_feature]`, and `run` calls it in an `unsafe` block whose proof is the token: it
+/// exists only where the CPU has every feature listed. Without one, the kernel is the build's
+/// own instructions, kept out of line.
+macro_rules! level_entry {
+    ($level:ident, features = $features:literal) => {
+        /// The kernel compiled with this level's target features.
+        #[target_feature(enable = $features)]
+        fn kernel<const INPUTS: bool>(t: $level, job: $crate::batch::kernel::Job<'_>) -> usize {
+            $crate::batch::kernel::run::<$level, INPUTS>(t, job)
+        }
+
+        impl $level {
+            /// Runs the batch kernel at this level over the common prefix of the job's slices;
+            /// returns its length.
+            pub(crate) fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+                let inputs = $crate::batch::kernel::has_inputs(job.inputs);
+                // SAFETY: a token of this level exists only where the CPU has every feature
+                // `kernel` enables (its constructor checks them).
+                unsafe {
+                    if inputs {
+                        kernel::<true>(self, job)
+                    } else {
+                        kernel::<false>(self, job)
+                    }
+                }
+            }
+        }
+    };
+    ($level:ident) => {
+        /// The kernel at this level, out of line.
+        #[inline(never)]
+        fn kernel<const INPUTS: bool>(t: $level, job: $crate::batch::kernel::Job<'_>) -> usize {
+            $crate::batch::kernel::run::<$level, INPUTS>(t, job)
+        }
+
+        impl $level {
+            /// Runs the batch kernel at this level over the common prefix of the job's slices;
+            /// returns its length.
+            pub(crate) fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+                if $crate::batch::kernel::has_inputs(job.inputs) {
+                    kernel::<true>(self, job)
+                } else {
+                    kernel::<false>(self, job)
+                }
+            }
+        }
+    };
+}
+
 /// Implements [`Simd`] for a level whose sixteen lanes are native vectors (one per index in `[$j]`), from one method per
 /// native operation (`$n`: the native `f32` vector, `$ni`: `i32` vector, `$nm`: mask vector).
 /// Each method applies the native operation to every part, written out (no closure, which might

@@ -5,8 +5,6 @@
     reason = "AVX2 and FMA intrinsics, called only through an `Avx2` token, which exists only where the CPU has both"
 )]
 
-use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
-use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::x86_64::{
     __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
     _mm256_and_si256, _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps,
@@ -32,44 +30,7 @@ impl Avx2 {
 
 simd_by_parts!(Avx2, [0, 1], __m256, __m256i, __m256, native);
 
-/// The kernel compiled for AVX2 and FMA.
-#[target_feature(enable = "avx2,fma")]
-fn kernel<const INPUTS: bool>(
-    t: Avx2,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    run::<Avx2, INPUTS>(t, k, call, pos, nor, inputs, out)
-}
-
-impl Avx2 {
-    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
-    /// length. Calls with and without per-point inputs are separate functions, so the plain
-    /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run(
-        self,
-        k: &Setup<'_>,
-        call: &dyn Call,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &PointInputs<'_>,
-        out: SoaRgb<'_>,
-    ) -> usize {
-        // SAFETY: the token exists only where the CPU has AVX2 and FMA, every feature `kernel`
-        // enables.
-        unsafe {
-            if has_inputs(inputs) {
-                kernel::<true>(self, k, call, pos, nor, inputs, out)
-            } else {
-                kernel::<false>(self, k, call, pos, nor, inputs, out)
-            }
-        }
-    }
-}
+level_entry!(Avx2, features = "avx2,fma");
 
 /// One `__m256` per operation. SAFETY (every `unsafe` block here): these functions are reached only
 /// through an [`Avx2`] token's methods, and a token exists only where `Level::Avx2.is_supported()`

@@ -6,8 +6,6 @@
     reason = "AVX-512 intrinsics, called only through an `Avx512` token, which exists only where the CPU has AVX-512F/VL, AVX2 and FMA"
 )]
 
-use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
-use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::x86_64::{
     __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _mm512_add_epi32, _mm512_add_ps,
     _mm512_cmp_ps_mask, _mm512_cmpneq_epi32_mask, _mm512_cvtepi32_ps, _mm512_div_ps,
@@ -33,44 +31,7 @@ impl Avx512 {
 
 simd_by_parts!(Avx512, [0], __m512, __m512i, __mmask16, native);
 
-/// The kernel compiled for AVX-512F, AVX-512VL, AVX2 and FMA.
-#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-fn kernel<const INPUTS: bool>(
-    t: Avx512,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    run::<Avx512, INPUTS>(t, k, call, pos, nor, inputs, out)
-}
-
-impl Avx512 {
-    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
-    /// length. Calls with and without per-point inputs are separate functions, so the plain
-    /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run(
-        self,
-        k: &Setup<'_>,
-        call: &dyn Call,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &PointInputs<'_>,
-        out: SoaRgb<'_>,
-    ) -> usize {
-        // SAFETY: the token exists only where the CPU has AVX-512F, AVX-512VL, AVX2 and FMA, every feature `kernel`
-        // enables.
-        unsafe {
-            if has_inputs(inputs) {
-                kernel::<true>(self, k, call, pos, nor, inputs, out)
-            } else {
-                kernel::<false>(self, k, call, pos, nor, inputs, out)
-            }
-        }
-    }
-}
+level_entry!(Avx512, features = "avx512f,avx512vl,avx2,fma");
 
 /// One `__m512` per operation. SAFETY (every `unsafe` block here): these functions are reached only
 /// through an [`Avx512`] token's methods, and a token exists only where

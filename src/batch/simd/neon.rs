@@ -10,8 +10,6 @@
     reason = "NEON intrinsics: this module is compiled only where the build enables NEON"
 )]
 
-use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
-use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::aarch64::{
     float32x4_t, int32x4_t, uint32x4_t, vaddq_f32, vaddq_s32, vaddvq_u32, vandq_u32, vbslq_f32,
     vcgtq_f32, vcleq_f32, vcltq_f32, vcvtq_f32_s32, vdivq_f32, vdupq_n_f32, vdupq_n_s32, vfmaq_f32,
@@ -32,40 +30,7 @@ simd_by_parts!(
     native
 );
 
-/// The kernel at this level.
-#[inline(never)]
-fn kernel<const INPUTS: bool>(
-    t: Neon,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    run::<Neon, INPUTS>(t, k, call, pos, nor, inputs, out)
-}
-
-impl Neon {
-    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
-    /// length. Calls with and without per-point inputs are separate functions, so the plain
-    /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run(
-        self,
-        k: &Setup<'_>,
-        call: &dyn Call,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &PointInputs<'_>,
-        out: SoaRgb<'_>,
-    ) -> usize {
-        if has_inputs(inputs) {
-            kernel::<true>(self, k, call, pos, nor, inputs, out)
-        } else {
-            kernel::<false>(self, k, call, pos, nor, inputs, out)
-        }
-    }
-}
+level_entry!(Neon);
 
 /// One `float32x4_t` per operation. SAFETY (every `unsafe` block here): this module is compiled only where the build enables NEON (`target_feature = "neon"`), so every CPU it runs on has it.
 mod native {

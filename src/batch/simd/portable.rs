@@ -3,9 +3,7 @@
 //! `1 / sqrt(x)`.
 
 use super::super::simd::Simd;
-use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
 use crate::batch::kernel::{Lanes, W};
-use crate::batch::soa::{SoaRgb, SoaVec3};
 use crate::math;
 
 /// The `Portable` level's token (every build runs it).
@@ -29,40 +27,7 @@ macro_rules! each {
     }};
 }
 
-/// The kernel at this level.
-#[inline(never)]
-fn kernel<const INPUTS: bool>(
-    t: Portable,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    run::<Portable, INPUTS>(t, k, call, pos, nor, inputs, out)
-}
-
-impl Portable {
-    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
-    /// length. Calls with and without per-point inputs are separate functions, so the plain
-    /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run(
-        self,
-        k: &Setup<'_>,
-        call: &dyn Call,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &PointInputs<'_>,
-        out: SoaRgb<'_>,
-    ) -> usize {
-        if has_inputs(inputs) {
-            kernel::<true>(self, k, call, pos, nor, inputs, out)
-        } else {
-            kernel::<false>(self, k, call, pos, nor, inputs, out)
-        }
-    }
-}
+level_entry!(Portable);
 
 impl Simd for Portable {
     type V = Lanes;

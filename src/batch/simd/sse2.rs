@@ -8,8 +8,6 @@
     reason = "SSE intrinsics: SSE2 is part of the x86_64 baseline, so every x86_64 CPU runs them"
 )]
 
-use crate::batch::kernel::{Call, PointInputs, Setup, has_inputs, run};
-use crate::batch::soa::{SoaRgb, SoaVec3};
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
     _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_div_ps,
@@ -24,40 +22,7 @@ pub(crate) struct Sse2;
 
 simd_by_parts!(Sse2, [0, 1, 2, 3], __m128, __m128i, __m128, native);
 
-/// The kernel at this level.
-#[inline(never)]
-fn kernel<const INPUTS: bool>(
-    t: Sse2,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    run::<Sse2, INPUTS>(t, k, call, pos, nor, inputs, out)
-}
-
-impl Sse2 {
-    /// Runs the batch kernel at this level over the common prefix of the slices; returns its
-    /// length. Calls with and without per-point inputs are separate functions, so the plain
-    /// calls' loop is not grown by the G-buffer's instances.
-    pub(crate) fn run(
-        self,
-        k: &Setup<'_>,
-        call: &dyn Call,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &PointInputs<'_>,
-        out: SoaRgb<'_>,
-    ) -> usize {
-        if has_inputs(inputs) {
-            kernel::<true>(self, k, call, pos, nor, inputs, out)
-        } else {
-            kernel::<false>(self, k, call, pos, nor, inputs, out)
-        }
-    }
-}
+level_entry!(Sse2);
 
 /// One `__m128` per operation. SAFETY (every `unsafe` block here): SSE2 is part of the x86_64 baseline: every CPU this code is compiled for has it.
 mod native {
