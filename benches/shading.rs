@@ -626,6 +626,14 @@ fn aos_group(c: &mut Criterion, name: &str, n: usize) {
             phong::shade_batch_aos(black_box(&model), &m, &scene, black_box(&p), &nn, &mut out)
         })
     });
+    // The same points as four-wide texels, read in place.
+    let p4: Vec<[f32; 4]> = p.iter().map(|v| v.extend(1.0).to_array()).collect();
+    let n4: Vec<[f32; 4]> = nn.iter().map(|v| v.extend(0.0).to_array()).collect();
+    g.bench_function("shade_batch_aos_f32x4", |b| {
+        b.iter(|| {
+            phong::shade_batch_aos(black_box(&model), &m, &scene, black_box(&p4), &n4, &mut out)
+        })
+    });
     g.bench_function("copy_soa", |b| {
         b.iter(|| copy_soa(&mut soa, black_box(&p), &nn, &mut out))
     });

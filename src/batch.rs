@@ -168,6 +168,7 @@
 //! # Ok::<(), phong::PhongError>(())
 //! ```
 
+mod aos;
 mod dispatch;
 mod gbuffer;
 mod kernel;
@@ -177,6 +178,7 @@ mod simd;
 mod soa;
 mod tiled;
 
+pub use aos::AosVec3;
 pub use gbuffer::{
     GBuffer, SoaSurface, shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level,
     shade_gbuffer_with_level, shade_gbuffer_xrgb8, shade_gbuffer_xrgb8_with_level,
@@ -441,7 +443,9 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
 }
 
 /// Shades array-of-structs input, the layout a G-buffer or a mesh keeps: `out[i] = shade(…,
-/// positions[i], normals[i]).total()`, as [`shade_batch`] computes it.
+/// positions[i], normals[i]).total()`, as [`shade_batch`] computes it. The elements are any
+/// [`AosVec3`]: `Vec3`, `Vec3A`, `[f32; 3]`, or four-wide `Vec4` / `[f32; 4]` texels whose fourth
+/// component is ignored.
 ///
 /// The points are moved into structure-of-arrays form 1024 at a time on the stack (36 KiB with
 /// the output, no allocation: mind a small thread stack), shaded by [`shade_batch`]'s kernel and
@@ -469,12 +473,12 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
 /// assert_eq!(out, [Vec3::new(1.0, 0.5, 0.0), Vec3::ZERO]);
 /// # Ok::<(), phong::PhongError>(())
 /// ```
-pub fn shade_batch_aos<M: BatchModel, L: BatchLight>(
+pub fn shade_batch_aos<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3>(
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
-    positions: &[Vec3],
-    normals: &[Vec3],
+    positions: &[P],
+    normals: &[N],
     out: &mut [Vec3],
 ) -> usize {
     let level = Level::detect();
@@ -493,12 +497,12 @@ pub fn shade_batch_aos<M: BatchModel, L: BatchLight>(
 ///
 /// **Domain, returns, degenerate input:** as [`shade_batch_aos`]; the levels are
 /// [`linear_to_srgb8`](crate::linear_to_srgb8) of its output.
-pub fn shade_batch_aos_rgba8<M: BatchModel, L: BatchLight>(
+pub fn shade_batch_aos_rgba8<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3>(
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
-    positions: &[Vec3],
-    normals: &[Vec3],
+    positions: &[P],
+    normals: &[N],
     out: &mut [[u8; 4]],
 ) -> usize {
     let level = Level::detect();
@@ -522,10 +526,10 @@ const CHUNK: usize = 1024;
 /// Shades `min` of the lengths chunk by chunk, transposing each into stack arrays, and writes
 /// `pack(colour)` per point; returns the count.
 #[inline(always)]
-fn chunked_aos<M: BatchModel, L: BatchLight, T>(
+fn chunked_aos<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3, T>(
     shading: &Shading<'_, '_, M, L>,
-    positions: &[Vec3],
-    normals: &[Vec3],
+    positions: &[P],
+    normals: &[N],
     out: &mut [T],
     pack: impl Fn(Vec3) -> T,
 ) -> usize {
@@ -544,8 +548,8 @@ fn chunked_aos<M: BatchModel, L: BatchLight, T>(
             .zip(&normals[start..start + len])
             .enumerate()
         {
-            (px[j], py[j], pz[j]) = (p.x, p.y, p.z);
-            (nx[j], ny[j], nz[j]) = (q.x, q.y, q.z);
+            [px[j], py[j], pz[j]] = p.xyz();
+            [nx[j], ny[j], nz[j]] = q.xyz();
         }
         let pos = SoaVec3::new(&px[..len], &py[..len], &pz[..len]);
         let nor = SoaVec3::new(&nx[..len], &ny[..len], &nz[..len]);

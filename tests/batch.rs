@@ -1182,7 +1182,7 @@ fn eight_bit_outputs_are_the_encoded_batch_at_every_level() {
     }
 }
 
-/// The array-of-structs entry points give `shade_batch`'s results bit for bit (the same kernel on
+/// The array-of-structs entry points, from every `AosVec3` element type, give `shade_batch`'s results bit for bit (the same kernel on
 /// the same groups of 16: the 1024-point chunks are a multiple of them), with sizes that are not
 /// multiples of a chunk, random and adversarial points, and a scene that takes the scalar path.
 #[test]
@@ -1230,5 +1230,33 @@ fn array_of_structs_input_gives_the_soa_results() {
             let [r, g, bl] = phong::linear_to_srgb8(want[i]);
             assert_eq!(rgba[i], [r, g, bl, 255], "point {i}");
         }
+        // The four-wide layouts a G-buffer keeps (the fourth component ignored, so garbage
+        // there must not matter), `Vec3A` and `[f32; 3]`: the same results, bit for bit.
+        let p4: Vec<[f32; 4]> = b.p.iter().map(|v| [v.x, v.y, v.z, f32::NAN]).collect();
+        let n4: Vec<glam::Vec4> = b.n.iter().map(|v| v.extend(-1.0e30)).collect();
+        let p3a: Vec<glam::Vec3A> = b.p.iter().map(|&v| v.into()).collect();
+        let n3: Vec<[f32; 3]> = b.n.iter().map(|v| v.to_array()).collect();
+        let mut out4 = vec![Vec3::NAN; len];
+        let mut out3 = vec![Vec3::NAN; len];
+        assert_eq!(
+            phong::shade_batch_aos(&phong_model, &m, &scene, &p4, &n4, &mut out4),
+            len
+        );
+        assert_eq!(
+            phong::shade_batch_aos(&phong_model, &m, &scene, &p3a, &n3, &mut out3),
+            len
+        );
+        let mut rgba4 = vec![[0u8; 4]; len];
+        phong::shade_batch_aos_rgba8(&phong_model, &m, &scene, &p4, &n4, &mut rgba4);
+        let bits = |v: &Vec3| v.to_array().map(f32::to_bits);
+        for i in 0..len {
+            assert_eq!(bits(&out4[i]), bits(&want[i]), "[f32; 4] / Vec4, point {i}");
+            assert_eq!(
+                bits(&out3[i]),
+                bits(&want[i]),
+                "Vec3A / [f32; 3], point {i}"
+            );
+        }
+        assert_eq!(rgba4, rgba);
     }
 }
