@@ -7,6 +7,8 @@
 //!   [`phong::Shader`] prepared once from the model's defaults, then `shade(p, n).total()` per point,
 //!   written as the quick start writes it (the scene built around its one light where the points
 //!   are shaded, so the compiler sees one light, as it does in `naive_glam`);
+//! - `scalar_opaque`: the same with each point passed through `black_box`, so the compiler cannot
+//!   vectorise across points, as in a recursive ray tracer or a per-pixel callback;
 //! - `shade`: the free function `phong::shade` per point (it prepares the shader on every call);
 //! - `batch`: `phong::shade_batch` on structure-of-arrays copies (shininess 32);
 //! - `batch_frac`: the same at shininess 20.5 (a non-integer exponent: polynomial pow).
@@ -24,7 +26,7 @@
 //! `falloff_4096` (a spot light and an Unreal-falloff point light: the batch against `shade`) and
 //! `tiled_64_lights` (64 lights over a G-buffer: every light against per-tile culling).
 //!
-//! Before timing, each group asserts that `scalar`, `batch` and `batch_frac` agree with
+//! Before timing, each group asserts that `scalar`, `scalar_opaque`, `batch` and `batch_frac` agree with
 //! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
 //!
 //! Run: `cargo bench --bench shading`; then `cargo run --release --example performance`.
@@ -188,6 +190,23 @@ fn shader_loop<M: phong::ReflectionModel + Default>(
     }
 }
 
+/// [`shader_loop`] with each point passed through `black_box`, so the compiler cannot vectorise
+/// across points: one point per call, as a recursive ray tracer or a per-pixel callback shades.
+#[inline(never)]
+fn opaque_loop<M: phong::ReflectionModel + Default>(
+    light: &PointLight,
+    mat: &Material,
+    p: &[Vec3],
+    n: &[Vec3],
+    out: &mut [Vec3],
+) {
+    let lights = [*light];
+    let shader = phong::Shader::new(M::default(), mat, &scene(&lights));
+    for i in 0..p.len() {
+        out[i] = shader.shade(black_box(p[i]), n[i]).total();
+    }
+}
+
 #[inline(never)]
 fn scalar_loop<M: phong::ReflectionModel>(
     model: &M,
@@ -247,6 +266,10 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
                 for i in 0..n {
                     assert_close("scalar", scalar[i], naive[i], i);
                 }
+                opaque_loop::<Phong>(&lights[0], &m, &p, &nn, scalar);
+                for i in 0..n {
+                    assert_close("scalar_opaque", scalar[i], naive[i], i);
+                }
                 scalar_loop(&Phong::default(), &m, &scene, &p, &nn, scalar);
                 batch_run(level, &phong_model(PowStrategy::Auto), &m, &scene, soa);
             }
@@ -254,6 +277,10 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
                 shader_loop::<BlinnPhong>(&lights[0], &m, &p, &nn, scalar);
                 for i in 0..n {
                     assert_close("scalar", scalar[i], naive[i], i);
+                }
+                opaque_loop::<BlinnPhong>(&lights[0], &m, &p, &nn, scalar);
+                for i in 0..n {
+                    assert_close("scalar_opaque", scalar[i], naive[i], i);
                 }
                 scalar_loop(&BlinnPhong::default(), &m, &scene, &p, &nn, scalar);
                 batch_run(level, &blinn_model(PowStrategy::Auto), &m, &scene, soa);
@@ -294,6 +321,17 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
                     )
                 })
             });
+            g.bench_function("scalar_opaque", |b| {
+                b.iter(|| {
+                    opaque_loop::<Phong>(
+                        black_box(&lights[0]),
+                        &m32,
+                        black_box(&p),
+                        &nn,
+                        &mut scalar,
+                    )
+                })
+            });
             g.bench_function("shade", |b| {
                 b.iter(|| {
                     scalar_loop(
@@ -318,6 +356,17 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
             g.bench_function("scalar", |b| {
                 b.iter(|| {
                     shader_loop::<BlinnPhong>(
+                        black_box(&lights[0]),
+                        &m32,
+                        black_box(&p),
+                        &nn,
+                        &mut scalar,
+                    )
+                })
+            });
+            g.bench_function("scalar_opaque", |b| {
+                b.iter(|| {
+                    opaque_loop::<BlinnPhong>(
                         black_box(&lights[0]),
                         &m32,
                         black_box(&p),

@@ -123,7 +123,7 @@ use lights::{attenuation, light};
 use reflection::{
     blinn_phong, gate, incidence, lambert, model, normalization, phong, pow, resolved_model,
 };
-use shading::{shade, shader, terms, visibility};
+use shading::{lobe_pow, shade, shader, terms, visibility};
 use surfaces::{material, surface};
 
 pub use attenuation::Attenuation;

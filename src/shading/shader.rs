@@ -4,15 +4,13 @@ use glam::{Vec3, Vec3A};
 
 use crate::incidence::Incidence;
 use crate::light::{FlatLight, LightSource, sanitize_colour};
+use crate::lobe_pow::{self, LobePow, lobe_power};
 use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
 use crate::normalize::{direction_between, normalize_full, sub_saturating};
 use crate::normalize_or_zero;
-use crate::pow::{
-    P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_pow, auto_pow_fixed, auto_split,
-    pow_u32, pow_u32_fixed,
-};
+use crate::pow::{P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_split};
 use crate::resolved_model::{Lobe, ResolvedModel, SpecularPlan};
 use crate::shade::{Scene, Viewer};
 use crate::surface::Surface;
@@ -419,7 +417,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let pt = Point { position, n, v };
         let (ambient, diffuse, specular) = match self.resolved {
             Some(r) if !M::HAS_SPECULAR || r.lobe == Lobe::None => {
-                self.light_loop::<NO_LOBE>(r, surface, pt, visibility, |_| 0.0)
+                self.light_loop::<NO_LOBE>(r, surface, pt, visibility, lobe_pow::NoLobe)
             }
             // The pow plan is chosen here too, so the loop runs the plan's code inline and calls
             // nothing: a call inside it would force every live value out of the vector registers.
@@ -429,15 +427,14 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     n,
                     frac,
                     poly: Poly::P7,
-                } => self.lobe_loop(r, surface, pt, visibility, move |x| auto_pow(x, n, frac)),
+                } => self.lobe_loop(r, surface, pt, visibility, lobe_pow::Auto { n, frac }),
                 PowPlan::Squaring { n } => {
-                    self.lobe_loop(r, surface, pt, visibility, move |x| pow_u32(x, n))
+                    self.lobe_loop(r, surface, pt, visibility, lobe_pow::Squaring(n))
                 }
-                // `powf` is a call worth skipping: about half of all lobe bases are ≤ 0.
-                PowPlan::Exact { s } => self.lobe_loop(r, surface, pt, visibility, move |x| {
-                    if x > 0.0 { math::powf(x, s) } else { 0.0 }
-                }),
-                plan => self.lobe_loop(r, surface, pt, visibility, move |x| plan.eval(x)),
+                PowPlan::Exact { s } => {
+                    self.lobe_loop(r, surface, pt, visibility, lobe_pow::Exact(s))
+                }
+                plan => self.lobe_loop(r, surface, pt, visibility, lobe_pow::Plan(plan)),
             },
             None => self.custom_loop(surface, pt, visibility),
         };
@@ -529,12 +526,17 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     n: whole,
                     frac,
                     poly: Poly::P7,
-                } => lobe_power(base, &|x| {
-                    auto_pow_fixed::<SHARED>(x, whole, frac, &one.poly)
-                }),
-                PowPlan::Squaring { n: whole } => lobe_power(base, &|x| pow_u32_fixed(x, whole)),
-                PowPlan::Exact { s } => lobe_power(base, &|x| math::powf(x, s)),
-                plan => lobe_power(base, &|x| plan.eval(x)),
+                } => lobe_power(
+                    base,
+                    lobe_pow::AutoFixed::<SHARED> {
+                        n: whole,
+                        frac,
+                        consts: &one.poly,
+                    },
+                ),
+                PowPlan::Squaring { n: whole } => lobe_power(base, lobe_pow::SquaringFixed(whole)),
+                PowPlan::Exact { s } => lobe_power(base, lobe_pow::Exact(s)),
+                plan => lobe_power(base, lobe_pow::Plan(plan)),
             };
             let ws = surface.specular.scale * r.gate(n_dot_l) * p;
             if present { ws } else { 0.0 }
@@ -581,7 +583,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         surface: &Prepared,
         pt: Point,
         visibility: impl Visibility,
-        pow: impl Fn(f32) -> f32,
+        pow: impl LobePow,
     ) -> (Vec3A, Vec3A, Vec3A) {
         if r.lobe == Lobe::Blinn {
             self.light_loop::<BLINN>(r, surface, pt, visibility, pow)
@@ -599,7 +601,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         surface: &Prepared,
         pt: Point,
         mut visibility: impl Visibility,
-        pow: impl Fn(f32) -> f32,
+        pow: impl LobePow,
     ) -> (Vec3A, Vec3A, Vec3A) {
         let Point { position, n, v } = pt;
         let n_dot_v = n.dot(v);
@@ -620,11 +622,11 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         // One light, the commonest case, without a loop: straight-line code, so a caller's loop
         // over points has no inner loop and the compiler can vectorise it across points.
         if let [light] = self.lights {
-            return Self::add_light::<LOBE>(&k, sums, 0, light, visibility.visibility(0), &pow);
+            return Self::add_light::<LOBE>(&k, sums, 0, light, visibility.visibility(0), pow);
         }
         let mut sums = sums;
         for (i, light) in self.lights.iter().enumerate() {
-            sums = Self::add_light::<LOBE>(&k, sums, i, light, visibility.visibility(i), &pow);
+            sums = Self::add_light::<LOBE>(&k, sums, i, light, visibility.visibility(i), pow);
         }
         sums
     }
@@ -637,7 +639,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         i: usize,
         light: &L,
         vis: f32,
-        pow: &impl Fn(f32) -> f32,
+        pow: impl LobePow,
     ) -> (Vec3A, Vec3A, Vec3A) {
         let LightConsts {
             r,
@@ -743,14 +745,6 @@ struct Point {
     position: Vec3,
     n: Vec3,
     v: Vec3,
-}
-
-/// `base^e` through `pow` for a lobe base: `x ≤ 0` or NaN gives 0, `x ≥ 1` gives `pow(1)` (so
-/// `0^0 = 0`). Branch-free in `x`: `pow` runs on the clamped base and is selected away.
-#[inline(always)]
-fn lobe_power(x: f32, pow: &impl Fn(f32) -> f32) -> f32 {
-    let p = pow(math::clamp_or_lo(x, 0.0, 1.0));
-    if x > 0.0 { p } else { 0.0 }
 }
 
 /// The lobe kinds as const-generic parameters of [`Shader::light_loop`].
