@@ -691,7 +691,7 @@ fn aos_group(c: &mut Criterion, name: &str, n: usize) {
 
 /// `gbuffer_4096`: deferred shading of a G-buffer with a per-point surface (textured colours,
 /// shininess uniform in [2, 128], fractional) and a shadow factor per point, through
-/// `shade_gbuffer` into `f32` and into 8-bit RGBA, against `batch_frac` (the same scene and
+/// `shade_gbuffer` into `f32`, into 8-bit RGBA and (`gbuffer_terms`) into the three terms, against `batch_frac` (the same scene and
 /// points with one material of shininess 20.5, `shade_batch`).
 fn gbuffer_4096(c: &mut Criterion) {
     let n = 4096;
@@ -815,6 +815,25 @@ fn gbuffer_4096(c: &mut Criterion) {
                 &scene,
                 black_box(&buffer),
                 &mut frame,
+            )
+        })
+    });
+    let mut terms: Vec<Vec<f32>> = (0..9).map(|_| vec![0.0; n]).collect();
+    g.bench_function("gbuffer_terms", |bch| {
+        bch.iter(|| {
+            let [ar, ag, ab, dr, dg, db, sr, sg, sb] = &mut terms[..] else {
+                unreachable!("nine slices")
+            };
+            phong::shade_gbuffer_terms(
+                black_box(&model),
+                &m20,
+                &scene,
+                black_box(&buffer),
+                phong::SoaTerms::new(
+                    SoaRgb::new(ar, ag, ab),
+                    SoaRgb::new(dr, dg, db),
+                    SoaRgb::new(sr, sg, sb),
+                ),
             )
         })
     });

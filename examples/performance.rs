@@ -746,6 +746,7 @@ fn main() {
     let gb_f32 = mpts("gbuffer_4096", "gbuffer_f32", 4096, "new");
     let gb_rgba8 = mpts("gbuffer_4096", "gbuffer_rgba8", 4096, "new");
     let gb_albedo8 = mpts("gbuffer_4096", "gbuffer_albedo8_rgba8", 4096, "new");
+    let gb_terms = mpts("gbuffer_4096", "gbuffer_terms", 4096, "new");
     let gb_acc = gbuffer_accuracy(&p, &nn, &soa);
     let _ = writeln!(
         md,
@@ -756,11 +757,13 @@ fn main() {
          the same points under one material of shininess 20.5). Phong, one point light, best \
          level, million points per second:\n\n\
          | `batch_frac` | `shade_gbuffer` (`f32`) | ratio | `shade_gbuffer_rgba8` | ratio | \
-         RGBA8 with 8-bit sRGB albedo | ratio |\n\
-         |---:|---:|---:|---:|---:|---:|---:|\n| {} | {} | {} | {} | {} | {} | {} |\n\n\
-         The last pair reads the texels as a renderer keeps them, 8-bit sRGB \
+         RGBA8 with 8-bit sRGB albedo | ratio | `shade_gbuffer_terms` | ratio |\n\
+         |---:|---:|---:|---:|---:|---:|---:|---:|---:|\n\
+         | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n\n\
+         The RGBA8-with-albedo pair reads the texels as a renderer keeps them, 8-bit sRGB \
          (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a 256-entry table), in place of \
-         linear `f32` reflectances.\n\n\
+         linear `f32` reflectances. The last pair writes the three terms apart (`SoaTerms`: nine \
+         `f32` slices, 36 bytes a point against the total's 12).\n\n\
          Why it is slower than one material: a per-point surface is sanitised and its exponent \
          split per lane (scalar code per chunk), its `Auto` pow runs the squaring ladder over the \
          bits some lane has and the polynomial where any lane's shininess is fractional, it keeps \
@@ -778,6 +781,8 @@ fn main() {
         fmt_opt(frac.zip(gb_rgba8).map(|(a, b)| b / a), 2),
         fmt_opt(gb_albedo8, 0),
         fmt_opt(frac.zip(gb_albedo8).map(|(a, b)| b / a), 2),
+        fmt_opt(gb_terms, 0),
+        fmt_opt(frac.zip(gb_terms).map(|(a, b)| b / a), 2),
         gb_acc.max_abs,
         gb_acc.mismatch
     );

@@ -117,6 +117,13 @@
 //! the cache. The levels are exactly those of this module's `f32` output; no allocation, so they
 //! work without `alloc`.
 //!
+//! ## The terms apart
+//!
+//! [`shade_gbuffer_terms`] writes each point's ambient, diffuse and specular terms into their own
+//! slices ([`SoaTerms`]), for a renderer that treats them differently. The same kernel computes
+//! them at every level; only the sum (and, for one material whose sums cannot overflow, the
+//! folding of the products into that sum) is left out.
+//!
 //! ## Array-of-structs input
 //!
 //! [`shade_batch_aos`] and [`shade_batch_aos_rgba8`] take `&[Vec3]` positions and normals, the
@@ -175,23 +182,26 @@ mod kernel;
 mod level;
 mod prepare;
 mod simd;
+mod sink;
 mod soa;
 mod tiled;
 
 pub use aos::AosVec3;
 pub use gbuffer::{
     GBuffer, SoaSurface, shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level,
-    shade_gbuffer_with_level, shade_gbuffer_xrgb8, shade_gbuffer_xrgb8_with_level,
+    shade_gbuffer_terms, shade_gbuffer_terms_with_level, shade_gbuffer_with_level,
+    shade_gbuffer_xrgb8, shade_gbuffer_xrgb8_with_level,
 };
 pub use level::{Level, UnsupportedLevel};
 pub use prepare::{BatchLight, BatchModel};
-pub use soa::{SoaRgb, SoaVec3};
+pub use soa::{SoaRgb, SoaTerms, SoaVec3};
 pub use tiled::{TileCulling, shade_gbuffer_tiled, shade_gbuffer_tiled_with_level};
 
 use glam::Vec3;
 
 use crate::material::Material;
 use crate::shade::Scene;
+use sink::Sink;
 
 /// Shades every point of a structure-of-arrays batch: `out[i] = shade(…, p[i], n[i]).total()`.
 ///
@@ -731,33 +741,29 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
 
     /// Points `run` of the slices and of `inputs`, into the same points of `out` (the others
     /// untouched); returns the run's length.
-    fn shade_range(
+    fn shade_range<O: Sink>(
         &self,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &kernel::PointInputs<'_>,
-        out: &mut SoaRgb<'_>,
+        out: &mut O,
         run: core::ops::Range<usize>,
     ) -> usize {
         self.shade_inputs(
             pos.range(run.clone()),
             nor.range(run.clone()),
             &inputs.from(run.start),
-            SoaRgb::new(
-                &mut out.r[run.clone()],
-                &mut out.g[run.clone()],
-                &mut out.b[run],
-            ),
+            out.part(run),
         )
     }
 
     /// [`shade`](Self::shade) with per-point inputs over at least as many points.
-    fn shade_inputs(
+    fn shade_inputs<O: Sink>(
         &self,
         pos: SoaVec3<'_>,
         nor: SoaVec3<'_>,
         inputs: &kernel::PointInputs<'_>,
-        out: SoaRgb<'_>,
+        out: O,
     ) -> usize {
         match &self.kernel {
             Some(k) => {
@@ -785,14 +791,14 @@ impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
 /// `shade_surface`), for scenes the kernel does not handle.
 ///
 /// [`Shader`]: crate::Shader
-fn scalar<M: BatchModel, L: BatchLight>(
+fn scalar<M: BatchModel, L: BatchLight, O: Sink>(
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     pos: SoaVec3<'_>,
     nor: SoaVec3<'_>,
     inputs: &kernel::PointInputs<'_>,
-    out: SoaRgb<'_>,
+    mut out: O,
 ) -> usize {
     let n = pos.len().min(nor.len()).min(out.len());
     let shader = crate::Shader::new(model, material, scene);
@@ -813,11 +819,8 @@ fn scalar<M: BatchModel, L: BatchLight>(
                 let vis = crate::VisibilityFn(|j| inputs.visibility(j, i, 1)[0]);
                 shader.shade_surface(p, q, &surface, vis)
             }
-        }
-        .total();
-        out.r[i] = c.x;
-        out.g[i] = c.y;
-        out.b[i] = c.z;
+        };
+        out.put(i, &c);
     }
     n
 }

@@ -128,12 +128,12 @@ use surfaces::{material, surface};
 
 pub use attenuation::Attenuation;
 pub use batch::{
-    AosVec3, BatchLight, BatchModel, GBuffer, Level, SoaRgb, SoaSurface, SoaVec3, TileCulling,
-    UnsupportedLevel, shade_batch, shade_batch_aos, shade_batch_aos_rgba8, shade_batch_rgba8,
-    shade_batch_rgba8_with_level, shade_batch_with_level, shade_batch_xrgb8, shade_gbuffer,
-    shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level, shade_gbuffer_tiled,
-    shade_gbuffer_tiled_with_level, shade_gbuffer_with_level, shade_gbuffer_xrgb8,
-    shade_gbuffer_xrgb8_with_level,
+    AosVec3, BatchLight, BatchModel, GBuffer, Level, SoaRgb, SoaSurface, SoaTerms, SoaVec3,
+    TileCulling, UnsupportedLevel, shade_batch, shade_batch_aos, shade_batch_aos_rgba8,
+    shade_batch_rgba8, shade_batch_rgba8_with_level, shade_batch_with_level, shade_batch_xrgb8,
+    shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level, shade_gbuffer_terms,
+    shade_gbuffer_terms_with_level, shade_gbuffer_tiled, shade_gbuffer_tiled_with_level,
+    shade_gbuffer_with_level, shade_gbuffer_xrgb8, shade_gbuffer_xrgb8_with_level,
 };
 pub use blinn_phong::BlinnPhong;
 pub use color::{

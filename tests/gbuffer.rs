@@ -18,8 +18,8 @@ use glam::Vec3;
 use phong::{
     Attenuation, BlinnPhong, DirectionalLight, GBuffer, Lambert, Level, Light, LightColors,
     LightSource, Material, Model, Normalization, Phong, PointLight, PowStrategy, Scene, Shader,
-    SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, TileCulling, Viewer,
-    VisibilityFn,
+    SoaRgb, SoaSurface, SoaTerms, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, TileCulling,
+    Viewer, VisibilityFn,
 };
 use rng::Rng;
 
@@ -823,6 +823,148 @@ fn albedo_texels_are_the_decoded_surface() {
                 shade(want),
                 "{level}: albedo over the {what}"
             );
+        }
+    }
+}
+
+/// `shade_gbuffer_terms` at `level`, every point's three terms (`-1` where nothing was written).
+fn run_terms(
+    level: Level,
+    model: &Model,
+    base: &Material,
+    scene: &Scene<'_, PointLight>,
+    buffer: &GBuffer<'_>,
+) -> Vec<[Vec3; 3]> {
+    let len = buffer.len();
+    let mut t: Vec<Vec<f32>> = (0..9).map(|_| vec![-1.0; len]).collect();
+    let [ar, ag, ab, dr, dg, db, sr, sg, sb] = &mut t[..] else {
+        unreachable!()
+    };
+    let out = SoaTerms::new(
+        SoaRgb::new(ar, ag, ab),
+        SoaRgb::new(dr, dg, db),
+        SoaRgb::new(sr, sg, sb),
+    );
+    let shaded = phong::shade_gbuffer_terms_with_level(level, model, base, scene, buffer, out)
+        .expect("a supported level");
+    assert_eq!(shaded, len);
+    (0..len)
+        .map(|i| {
+            let v = |k: usize| Vec3::new(t[k][i], t[k + 1][i], t[k + 2][i]);
+            [v(0), v(3), v(6)]
+        })
+        .collect()
+}
+
+/// The separate-terms output, term by term, against the equation. Each term of the equation is
+/// the whole equation for a material that keeps only that term's reflectance (the other two and
+/// the emission zero), so each term written must lie in that material's range from
+/// tests/support/batch_range.rs: the accuracy the batch documents, with no tolerance of its own.
+/// Every model, with and without per-point surfaces and visibilities, every level, random points
+/// with the degenerate ones `points` mixes in (zero normals, a point at a light or at the eye);
+/// a coverage mask leaves the uncovered points' nine values untouched.
+#[test]
+fn the_terms_output_is_each_term_of_the_equation_at_every_level() {
+    let mut rng = Rng::new(0x7e5_0003);
+    let eye = Vec3::new(1.0, -2.0, 4.0);
+    let lamps = lamps(&mut rng, 2);
+    let g = points(&mut rng, 203, &lamps, eye);
+    let len = g.p.len();
+    let base = Material::try_new(Vec3::splat(0.2), Vec3::splat(0.6), Vec3::splat(0.4), 24.0)
+        .unwrap()
+        .try_with_emission(Vec3::splat(0.01))
+        .unwrap();
+    let plain: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = Scene {
+        lights: &plain,
+        ambient: Vec3::splat(0.02),
+        viewer: Viewer::At(eye),
+    };
+    let (p, n) = (split(&g.p), split(&g.n));
+    let (ka, kd, ks) = (split(&g.ka), split(&g.kd), split(&g.ks));
+    let coverage: Vec<bool> = (0..len).map(|i| i % 3 != 1).collect();
+    for (name, model) in models() {
+        for (with_surface, with_vis, with_coverage) in [
+            (false, false, false),
+            (true, true, false),
+            (true, false, true),
+            (false, true, false),
+        ] {
+            let mut buffer = GBuffer::new(
+                SoaVec3::new(&p[0], &p[1], &p[2]),
+                SoaVec3::new(&n[0], &n[1], &n[2]),
+            );
+            if with_surface {
+                buffer = buffer.with_surface(SoaSurface {
+                    ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
+                    diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
+                    specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
+                    shininess: &g.s,
+                });
+            }
+            if with_vis {
+                buffer = buffer.with_visibility(&g.vis);
+            }
+            if with_coverage {
+                buffer = buffer.with_coverage(&coverage);
+            }
+            // Point i's range for each term: its material reduced to that term, under the scene
+            // whose light j is scaled by the point's visibility of it (as in `check`).
+            let ranges: Vec<[batch_range::Range; 3]> = (0..len)
+                .map(|i| {
+                    let (a, d, s, sh) = if with_surface {
+                        (g.ka[i], g.kd[i], g.ks[i], g.s[i])
+                    } else {
+                        (
+                            base.ambient(),
+                            base.diffuse(),
+                            base.specular(),
+                            base.shininess(),
+                        )
+                    };
+                    let lights: Vec<PointLight> = lamps
+                        .iter()
+                        .enumerate()
+                        .map(|(j, l)| l.light(if with_vis { g.vis[j * len + i] } else { 1.0 }))
+                        .collect();
+                    let sc = Scene {
+                        lights: &lights,
+                        ..scene
+                    };
+                    let z = Vec3::ZERO;
+                    let only = |a, d, s| Material::try_new(a, d, s, sh).unwrap();
+                    [only(a, z, z), only(z, d, z), only(z, z, s)]
+                        .map(|m| batch_range::range(&model, &m, &sc, g.p[i], g.n[i]))
+                })
+                .collect();
+            for level in Level::supported() {
+                let out = run_terms(level, &model, &base, &scene, &buffer);
+                for i in 0..len {
+                    if with_coverage && !coverage[i] {
+                        assert_eq!(
+                            out[i],
+                            [Vec3::splat(-1.0); 3],
+                            "{name}: uncovered point {i}"
+                        );
+                        continue;
+                    }
+                    for (t, term) in ["ambient", "diffuse", "specular"].iter().enumerate() {
+                        let r = &ranges[i][t];
+                        assert!(
+                            r.holds(out[i][t]),
+                            "{name} at {level} (surface {with_surface}, visibility {with_vis}): \
+                             the {term} term at point {i} (p = {}, n = {}, s = {}) is {}, \
+                             outside [{}, {}]",
+                            g.p[i],
+                            g.n[i],
+                            g.s[i],
+                            out[i][t],
+                            r.lo,
+                            r.hi
+                        );
+                    }
+                }
+            }
         }
     }
 }

@@ -3,7 +3,8 @@
 use super::kernel::PointInputs;
 use super::level::{Level, UnsupportedLevel};
 use super::prepare::{BatchLight, BatchModel};
-use super::soa::{SoaRgb, SoaVec3};
+use super::sink::Sink;
+use super::soa::{SoaRgb, SoaTerms, SoaVec3};
 use super::{Shading, chunked_covered, covered_runs, rgba, xrgb};
 use crate::material::Material;
 use crate::shade::Scene;
@@ -390,13 +391,71 @@ pub fn shade_gbuffer_xrgb8_with_level<M: BatchModel, L: BatchLight>(
     Ok(encoded(level, model, material, scene, gbuffer, out, xrgb))
 }
 
-pub(super) fn run<M: BatchModel, L: BatchLight>(
+/// [`shade_gbuffer`] writing each term apart: `out.ambient`, `out.diffuse` and `out.specular`
+/// receive point `i`'s [`Terms`](crate::Terms) as the scalar path computes them (see
+/// [`SoaTerms`]), for renderers that treat the terms differently (a bloom pass on the specular
+/// term, ambient occlusion applied to the ambient term, a debug view of one term).
+///
+/// The terms come from the same kernel as [`shade_gbuffer`] at every level, never folded (the
+/// total colour may fold the products of the light and material colours into one sum, which
+/// rounds differently), so the sum `ambient + diffuse + specular + emission` equals
+/// [`shade_gbuffer`]'s colour up to that rounding (a few ulps), and each term equals the scalar
+/// path's up to the batch's stated error (the module docs of `batch`). Per-point surfaces,
+/// visibilities, the 8-bit albedo and the coverage mask work as in [`shade_gbuffer`].
+///
+/// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with the nine output slices in
+/// place of three; the material's emission is not written.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{DirectionalLight, GBuffer, LightColors, Material, Phong, Scene, SoaRgb, SoaTerms, SoaVec3, Viewer};
+///
+/// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::splat(0.25), Vec3::ONE, Vec3::ONE)?)?;
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+/// let material = Material::try_from_color(Vec3::ONE, 32.0)?;
+/// let (zero, one) = ([0.0; 1], [1.0; 1]);
+/// let g = GBuffer::new(SoaVec3::new(&zero, &zero, &zero), SoaVec3::new(&zero, &zero, &one));
+/// let mut t = [[0.0f32; 1]; 9];
+/// let [ar, ag, ab, dr, dg, db, sr, sg, sb] = &mut t;
+/// let out = SoaTerms::new(SoaRgb::new(ar, ag, ab), SoaRgb::new(dr, dg, db), SoaRgb::new(sr, sg, sb));
+/// phong::shade_gbuffer_terms(&Phong::default(), &material, &scene, &g, out);
+/// // Facing the light and the viewer: ambient 0.25, diffuse 1, and the highlight's peak, 1.
+/// assert_eq!((t[0][0], t[3][0], t[6][0]), (0.25, 1.0, 1.0));
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub fn shade_gbuffer_terms<M: BatchModel, L: BatchLight>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    out: SoaTerms<'_>,
+) -> usize {
+    run(Level::detect(), model, material, scene, gbuffer, out)
+}
+
+/// [`shade_gbuffer_terms`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
+/// written) when this CPU or build cannot run it.
+pub fn shade_gbuffer_terms_with_level<M: BatchModel, L: BatchLight>(
     level: Level,
     model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     gbuffer: &GBuffer<'_>,
-    out: SoaRgb<'_>,
+    out: SoaTerms<'_>,
+) -> Result<usize, UnsupportedLevel> {
+    if !level.is_supported() {
+        return Err(UnsupportedLevel(level));
+    }
+    Ok(run(level, model, material, scene, gbuffer, out))
+}
+
+pub(super) fn run<M: BatchModel, L: BatchLight, O: Sink>(
+    level: Level,
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    gbuffer: &GBuffer<'_>,
+    mut out: O,
 ) -> usize {
     let (inputs, n) = gbuffer.inputs(scene.lights.len(), material);
     debug_assert!(
@@ -407,14 +466,8 @@ pub(super) fn run<M: BatchModel, L: BatchLight>(
     let shading = Shading::with_inputs(level, model, material, scene, &inputs);
     let (pos, nor) = gbuffer.prefix(n);
     let Some(coverage) = gbuffer.coverage else {
-        return shading.shade_inputs(
-            pos,
-            nor,
-            &inputs,
-            SoaRgb::new(&mut out.r[..n], &mut out.g[..n], &mut out.b[..n]),
-        );
+        return shading.shade_inputs(pos, nor, &inputs, out.part(0..n));
     };
-    let mut out = out;
     for run in covered_runs(&coverage[..n]) {
         shading.shade_range(pos, nor, &inputs, &mut out, run);
     }

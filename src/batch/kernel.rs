@@ -29,7 +29,8 @@ use glam::Vec3;
 
 use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
 use super::simd::Simd;
-use super::soa::{SoaRgb, SoaVec3};
+use super::sink::Sink;
+use super::soa::{SoaRgb, SoaTerms, SoaVec3};
 use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
 use crate::light::SpotLight;
@@ -42,6 +43,7 @@ use crate::reflection::normalization::Normalization;
 use crate::shade::{Scene, Viewer};
 use crate::shader::Shader;
 use crate::surface::Surface;
+use crate::terms::Terms;
 use crate::visibility::VisibilityFn;
 
 /// Lanes per step.
@@ -226,28 +228,30 @@ pub(crate) trait Call {
     fn light(&self, k: &Setup<'_>, j: usize) -> PreparedLight;
 
     /// Re-shades the points `i + j` for each lane `j` in `bad` with the scalar path, reading
-    /// their inputs again from the slices (so the fast loop need not keep them alive) and
-    /// writing over the kernel's colours: [`shade`](crate::shade), or with per-point `inputs`,
-    /// [`Shader::shade_surface`] (which sanitises the raw surface) with the point's visibilities.
+    /// their inputs again from the slices (so the fast loop need not keep them alive), and hands
+    /// each point's terms to `put` to be written over the kernel's: [`shade`](crate::shade), or
+    /// with per-point `inputs`, [`Shader::shade_surface`] (which sanitises the raw surface) with
+    /// the point's visibilities.
     fn fixup(
         &self,
         pos: (&SoaVec3<'_>, &SoaVec3<'_>),
         inputs: Option<&PointInputs<'_>>,
-        out: [&mut [f32]; 3],
         i: usize,
         bad: u32,
+        put: &mut dyn FnMut(usize, &Terms),
     );
 }
 
 /// One kernel call, as dispatch hands it to a level: the call's setup and its way out to the
-/// scalar path, the point slices, the per-point inputs and the output.
-pub(crate) struct Job<'a> {
+/// scalar path, the point slices, the per-point inputs and the output (a [`Sink`]: the total
+/// colour, or the terms).
+pub(crate) struct Job<'a, O = SoaRgb<'a>> {
     pub(crate) setup: &'a Setup<'a>,
     pub(crate) call: &'a dyn Call,
     pub(crate) pos: SoaVec3<'a>,
     pub(crate) nor: SoaVec3<'a>,
     pub(crate) inputs: &'a PointInputs<'a>,
-    pub(crate) out: SoaRgb<'a>,
+    pub(crate) out: O,
 }
 
 /// A call's model, material and scene: its [`Call`].
@@ -268,11 +272,10 @@ impl<M: BatchModel, L: BatchLight> Call for CallOf<'_, '_, M, L> {
         &self,
         (pos, nor): (&SoaVec3<'_>, &SoaVec3<'_>),
         inputs: Option<&PointInputs<'_>>,
-        out: [&mut [f32]; 3],
         i: usize,
         bad: u32,
+        put: &mut dyn FnMut(usize, &Terms),
     ) {
-        let [r, g, b] = out;
         let shader = Shader::for_one_point(self.model, self.material, self.scene);
         for j in 0..W {
             if bad & (1 << j) == 0 {
@@ -296,9 +299,8 @@ impl<M: BatchModel, L: BatchLight> Call for CallOf<'_, '_, M, L> {
                     let vis = VisibilityFn(|l| inputs.visibility(l, at, 1)[0]);
                     shader.shade_surface(p, n, &surface, vis)
                 }
-            }
-            .total();
-            (r[at], g[at], b[at]) = (c.x, c.y, c.z);
+            };
+            put(at, &c);
         }
     }
 }
@@ -848,7 +850,7 @@ fn chunk<S, const FOLDED: bool, const CALLS: bool>(
     n: &[S::V; 3],
     surface: Option<&SurfaceV<S>>,
     visibility: Option<(&PointInputs<'_>, usize, usize)>,
-) -> ([S::V; 3], u32)
+) -> ([[S::V; 3]; 3], u32)
 where
     S: Simd,
 {
@@ -1027,17 +1029,41 @@ where
         add_light!(lj, j);
     }
     let bad = !s.bits(ok) & 0xffff;
+    (
+        if FOLDED {
+            [amb, [zero; 3], [zero; 3]]
+        } else {
+            [amb, dif, spe]
+        },
+        bad,
+    )
+}
+
+/// A chunk's colours from [`chunk`]'s light sums: the three terms `[ambient, diffuse, specular]`
+/// (`terms`, a constant wherever this is inlined), or the total in the first row. Each sum saturates at `f32::MAX` before the
+/// material's colour multiplies it; the total saturates again (`shade`'s order: ambient +
+/// diffuse + specular + emission). `FOLDED`: the first sum is already the total.
+#[inline(always)]
+fn finish<S: Simd, const FOLDED: bool>(
+    s: S,
+    terms: bool,
+    k: &Setup<'_>,
+    surface: Option<&SurfaceV<S>>,
+    sums: [[S::V; 3]; 3],
+) -> [[S::V; 3]; 3] {
+    let max = s.splat(math::MAX);
+    let zero = s.splat(0.0);
+    let [amb, dif, spe] = sums;
     if FOLDED {
-        return (
+        return [
             [s.min(amb[0], max), s.min(amb[1], max), s.min(amb[2], max)],
-            bad,
-        );
+            [zero; 3],
+            [zero; 3],
+        ];
     }
-    // Each sum saturates at f32::MAX before the material's colour multiplies it; the total
-    // saturates again (`shade`'s order: ambient + diffuse + specular + emission).
     let ke = k.material.emission();
-    let mut rgb = [zero; 3];
-    for (c, out) in rgb.iter_mut().enumerate() {
+    let mut rows = [[zero; 3]; 3];
+    for c in 0..3 {
         let (ka, kd, ks) = match surface {
             Some(sf) => (sf.ka[c], sf.kd[c], sf.ks[c]),
             None => (
@@ -1049,9 +1075,13 @@ where
         let ta = s.min(s.mul(ka, s.min(amb[c], max)), max);
         let td = s.min(s.mul(kd, s.min(dif[c], max)), max);
         let ts = s.min(s.mul(ks, s.min(spe[c], max)), max);
-        *out = s.min(s.add(s.add(s.add(ta, td), ts), s.splat(ke[c])), max);
+        if terms {
+            (rows[0][c], rows[1][c], rows[2][c]) = (ta, td, ts);
+        } else {
+            rows[0][c] = s.min(s.add(s.add(s.add(ta, td), ts), s.splat(ke[c])), max);
+        }
     }
-    (rgb, bad)
+    rows
 }
 
 /// Runs the kernel at level `S` over the common prefix of the slices; returns its length.
@@ -1059,38 +1089,31 @@ where
 /// functions, so the plain calls' loop is not grown by the G-buffer's instances.
 #[inline(always)]
 pub(crate) fn run<S: Simd, const INPUTS: bool>(s: S, job: Job<'_>) -> usize {
-    let Job {
-        setup: k,
-        call,
-        pos,
-        nor,
-        inputs,
-        out,
-    } = job;
     if !INPUTS {
-        return match (k.folded, k.calls_out) {
-            (true, false) => {
-                run_with::<S, true, false, false, false>(s, k, call, pos, nor, inputs, out)
-            }
-            (true, true) => {
-                run_with::<S, true, true, false, false>(s, k, call, pos, nor, inputs, out)
-            }
-            (false, false) => {
-                run_with::<S, false, false, false, false>(s, k, call, pos, nor, inputs, out)
-            }
-            (false, true) => {
-                run_with::<S, false, true, false, false>(s, k, call, pos, nor, inputs, out)
-            }
+        return match (job.setup.folded, job.setup.calls_out) {
+            (true, false) => run_with::<S, _, true, false, false, false>(s, job),
+            (true, true) => run_with::<S, _, true, true, false, false>(s, job),
+            (false, false) => run_with::<S, _, false, false, false, false>(s, job),
+            (false, true) => run_with::<S, _, false, true, false, false>(s, job),
         };
     }
-    match (inputs.per_point_surface(), inputs.visibility.is_some()) {
-        (false, _) if k.folded => {
-            run_with::<S, true, true, false, true>(s, k, call, pos, nor, inputs, out)
-        }
-        (false, _) => run_with::<S, false, true, false, true>(s, k, call, pos, nor, inputs, out),
-        (true, false) => run_with::<S, false, true, true, false>(s, k, call, pos, nor, inputs, out),
-        (true, true) => run_with::<S, false, true, true, true>(s, k, call, pos, nor, inputs, out),
+    match (
+        job.inputs.per_point_surface(),
+        job.inputs.visibility.is_some(),
+    ) {
+        (false, _) if job.setup.folded => run_with::<S, _, true, true, false, true>(s, job),
+        (false, _) => run_with::<S, _, false, true, false, true>(s, job),
+        (true, false) => run_with::<S, _, false, true, true, false>(s, job),
+        (true, true) => run_with::<S, _, false, true, true, true>(s, job),
     }
+}
+
+/// [`run`] writing the three terms: one instance per level, which reads per-point surfaces and
+/// visibilities when the call has them (and the material's values and full visibility when it
+/// has not), and never folds the products (the terms must stay apart).
+#[inline(always)]
+pub(crate) fn run_terms<S: Simd>(s: S, job: Job<'_, SoaTerms<'_>>) -> usize {
+    run_with::<S, _, false, true, true, true>(s, job)
 }
 
 /// Whether a call has per-point inputs (a G-buffer's surfaces or visibilities).
@@ -1100,7 +1123,7 @@ pub(crate) fn has_inputs(inputs: &PointInputs<'_>) -> bool {
 }
 
 /// One chunk of [`run_with`]: points `i..i + count` (their positions `p` and normals `n`)
-/// shaded, with the lanes the scalar path must redo.
+/// shaded, as [`finish`] gives them, with the lanes the scalar path must redo.
 #[inline(always)]
 #[allow(
     clippy::too_many_arguments,
@@ -1114,6 +1137,7 @@ fn shade_chunk<
     const VISIBILITY: bool,
 >(
     s: S,
+    terms: bool,
     k: &Setup<'_>,
     call: &dyn Call,
     lights: &[LightLanes<S>; PREPARED],
@@ -1122,7 +1146,7 @@ fn shade_chunk<
     inputs: &PointInputs<'_>,
     i: usize,
     count: usize,
-) -> ([S::V; 3], u32)
+) -> ([[S::V; 3]; 3], u32)
 where
     S: Simd,
 {
@@ -1137,7 +1161,7 @@ where
     } else {
         None
     };
-    chunk::<S, FOLDED, CALLS>(
+    let (sums, bad) = chunk::<S, FOLDED, CALLS>(
         s,
         k,
         call,
@@ -1146,23 +1170,50 @@ where
         &[s.load(&n[0]), s.load(&n[1]), s.load(&n[2])],
         surface.as_ref(),
         visibility,
+    );
+    (
+        finish::<S, FOLDED>(s, terms, k, surface.as_ref(), sums),
+        bad,
     )
 }
 
-/// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present.
+/// A chunk's rows as lanes: the first (the total) alone, or all three terms.
 #[inline(always)]
-fn run_with<S, const FOLDED: bool, const CALLS: bool, const SURFACE: bool, const VISIBILITY: bool>(
+fn rows_out<S: Simd>(s: S, terms: bool, rows: &[[S::V; 3]; 3]) -> [[Lanes; 3]; 3] {
+    let mut out = [[[0.0; W]; 3]; 3];
+    for (r, row) in rows.iter().enumerate().take(if terms { 3 } else { 1 }) {
+        for c in 0..3 {
+            out[r][c] = s.store(row[c]);
+        }
+    }
+    out
+}
+
+/// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present;
+/// the sink `O` says whether the terms or their total are written.
+#[inline(always)]
+fn run_with<
+    S,
+    O: Sink,
+    const FOLDED: bool,
+    const CALLS: bool,
+    const SURFACE: bool,
+    const VISIBILITY: bool,
+>(
     s: S,
-    k: &Setup<'_>,
-    call: &dyn Call,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &PointInputs<'_>,
-    out: SoaRgb<'_>,
+    job: Job<'_, O>,
 ) -> usize
 where
     S: Simd,
 {
+    let Job {
+        setup: k,
+        call,
+        pos,
+        nor,
+        inputs,
+        mut out,
+    } = job;
     let len = pos.len().min(nor.len()).min(out.len());
     let pos = SoaVec3 {
         x: &pos.x[..len],
@@ -1174,7 +1225,6 @@ where
         y: &nor.y[..len],
         z: &nor.z[..len],
     };
-    let (r, g, b) = (&mut out.r[..len], &mut out.g[..len], &mut out.b[..len]);
     let per_point = (SURFACE || VISIBILITY).then_some(inputs);
     // The first lights' constants in every lane, once per call (a loop, not `array::from_fn`: a
     // closure may be left out of line, without the level's target features).
@@ -1182,36 +1232,47 @@ where
     for (slot, light) in lights.iter_mut().zip(k.prepared).skip(1) {
         *slot = LightLanes::new(s, light, FOLDED);
     }
+    // One chunk: a macro, not a closure (a closure may be left out of line, without the
+    // level's target features).
+    macro_rules! chunk_at {
+        ($i:expr, $count:expr, $p:expr, $n:expr) => {{
+            let (i, count) = ($i, $count);
+            let (rows, bad) = shade_chunk::<S, FOLDED, CALLS, SURFACE, VISIBILITY>(
+                s,
+                O::TERMS,
+                k,
+                call,
+                &lights,
+                $p,
+                $n,
+                inputs,
+                i,
+                count,
+            );
+            out.write(i, count, &rows_out(s, O::TERMS, &rows));
+            let bad = bad & (u32::MAX >> (32 - count));
+            if bad != 0 {
+                call.fixup((&pos, &nor), per_point, i, bad, &mut |at, t| out.put(at, t));
+            }
+        }};
+    }
     let full = len / W * W;
     let mut i = 0;
     while i < full {
-        let (c, bad) = shade_chunk::<S, FOLDED, CALLS, SURFACE, VISIBILITY>(
-            s,
-            k,
-            call,
-            &lights,
-            [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
-            [load(nor.x, i), load(nor.y, i), load(nor.z, i)],
-            inputs,
+        chunk_at!(
             i,
             W,
+            [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
+            [load(nor.x, i), load(nor.y, i), load(nor.z, i)]
         );
-        store(&mut r[i..i + W], s.store(c[0]));
-        store(&mut g[i..i + W], s.store(c[1]));
-        store(&mut b[i..i + W], s.store(c[2]));
-        if bad != 0 {
-            call.fixup((&pos, &nor), per_point, [r, g, b], i, bad);
-        }
         i += W;
     }
     if i < len {
-        let count = len - i;
         // The padding lanes are shaded too (zero normals: flagged) and fixed only up to `count`.
-        let (c, bad) = shade_chunk::<S, FOLDED, CALLS, SURFACE, VISIBILITY>(
-            s,
-            k,
-            call,
-            &lights,
+        let count = len - i;
+        chunk_at!(
+            i,
+            count,
             [
                 load_tail(pos.x, i, count),
                 load_tail(pos.y, i, count),
@@ -1221,28 +1282,10 @@ where
                 load_tail(nor.x, i, count),
                 load_tail(nor.y, i, count),
                 load_tail(nor.z, i, count),
-            ],
-            inputs,
-            i,
-            count,
+            ]
         );
-        r[i..].copy_from_slice(&s.store(c[0])[..count]);
-        g[i..].copy_from_slice(&s.store(c[1])[..count]);
-        b[i..].copy_from_slice(&s.store(c[2])[..count]);
-        let bad = bad & ((1u32 << count) - 1);
-        if bad != 0 {
-            call.fixup((&pos, &nor), per_point, [r, g, b], i, bad);
-        }
     }
     len
-}
-
-/// Writes one chunk's lanes over `out` (`W` long).
-#[inline(always)]
-fn store(out: &mut [f32], v: Lanes) {
-    if let Ok(a) = <&mut Lanes>::try_from(out) {
-        *a = v;
-    }
 }
 
 #[cfg(test)]

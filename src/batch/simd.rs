@@ -104,6 +104,18 @@ pub(crate) trait Simd: Copy {
     fn to_f32(self, a: Self::I) -> Self::V;
 }
 
+/// A level's kernel entries: the batch kernel compiled with the level's instructions, for each
+/// output form. Written by [`level_entry!`] for every level token.
+pub(crate) trait Kernels: Copy {
+    /// Runs the kernel writing total colours over the common prefix of the job's slices;
+    /// returns its length.
+    fn run(self, job: super::kernel::Job<'_>) -> usize;
+
+    /// Runs the kernel writing the three terms (one instance per level; see
+    /// [`run_terms`](super::kernel::run_terms)).
+    fn run_terms(self, job: super::kernel::Job<'_, super::soa::SoaTerms<'_>>) -> usize;
+}
+
 /// A level's entry: `kernel`, the loop compiled for the level, and the token's `run`, which calls
 /// it with or without per-point inputs (two functions, so the plain calls' loop is not grown by
 /// the G-buffer's instances). With a feature list the kernel is compiled inside
@@ -118,10 +130,17 @@ macro_rules! level_entry {
             $crate::batch::kernel::run::<$level, INPUTS>(t, job)
         }
 
-        impl $level {
-            /// Runs the batch kernel at this level over the common prefix of the job's slices;
-            /// returns its length.
-            pub(crate) fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+        /// The terms kernel compiled with this level's target features.
+        #[target_feature(enable = $features)]
+        fn kernel_terms(
+            t: $level,
+            job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
+        ) -> usize {
+            $crate::batch::kernel::run_terms::<$level>(t, job)
+        }
+
+        impl $crate::batch::simd::Kernels for $level {
+            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
                 let inputs = $crate::batch::kernel::has_inputs(job.inputs);
                 // SAFETY: a token of this level exists only where the CPU has every feature
                 // `kernel` enables (its constructor checks them).
@@ -133,6 +152,14 @@ macro_rules! level_entry {
                     }
                 }
             }
+
+            fn run_terms(
+                self,
+                job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
+            ) -> usize {
+                // SAFETY: as in `run`.
+                unsafe { kernel_terms(self, job) }
+            }
         }
     };
     ($level:ident) => {
@@ -142,15 +169,29 @@ macro_rules! level_entry {
             $crate::batch::kernel::run::<$level, INPUTS>(t, job)
         }
 
-        impl $level {
-            /// Runs the batch kernel at this level over the common prefix of the job's slices;
-            /// returns its length.
-            pub(crate) fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+        /// The terms kernel at this level, out of line.
+        #[inline(never)]
+        fn kernel_terms(
+            t: $level,
+            job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
+        ) -> usize {
+            $crate::batch::kernel::run_terms::<$level>(t, job)
+        }
+
+        impl $crate::batch::simd::Kernels for $level {
+            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
                 if $crate::batch::kernel::has_inputs(job.inputs) {
                     kernel::<true>(self, job)
                 } else {
                     kernel::<false>(self, job)
                 }
+            }
+
+            fn run_terms(
+                self,
+                job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
+            ) -> usize {
+                kernel_terms(self, job)
             }
         }
     };

@@ -80,3 +80,47 @@ impl<'a> SoaRgb<'a> {
         self.len() == 0
     }
 }
+
+/// Three output views, one per term of the shading equation: point `i`'s
+/// [`Terms`](crate::Terms)`::ambient` goes to `ambient` at `i`, and so on.
+///
+/// Each value written is the scalar path's term (saturated at `f32::MAX`, finite, `≥ 0`). The
+/// material's emission is the same at every point and is not written: a point's
+/// [`total`](crate::Terms::total) is `min(ambient + diffuse + specular + emission, f32::MAX)`.
+/// Elements past the shaded prefix are left untouched.
+#[derive(Debug)]
+pub struct SoaTerms<'a> {
+    /// `Ka ⊙ (Ia + Σ f·La)`.
+    pub ambient: SoaRgb<'a>,
+    /// `Kd ⊙ Σ f·vis·Ld·diffuse(N·L)`.
+    pub diffuse: SoaRgb<'a>,
+    /// `Ks ⊙ Σ f·vis·Ls·specular(N, L, V, s)`.
+    pub specular: SoaRgb<'a>,
+}
+
+impl<'a> SoaTerms<'a> {
+    /// The three views as one output.
+    #[must_use]
+    pub fn new(ambient: SoaRgb<'a>, diffuse: SoaRgb<'a>, specular: SoaRgb<'a>) -> Self {
+        SoaTerms {
+            ambient,
+            diffuse,
+            specular,
+        }
+    }
+
+    /// The length of the shortest of the nine slices.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.ambient
+            .len()
+            .min(self.diffuse.len())
+            .min(self.specular.len())
+    }
+
+    /// Whether the shortest slice is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
