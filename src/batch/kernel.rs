@@ -1177,18 +1177,6 @@ where
     )
 }
 
-/// A chunk's rows as lanes: the first (the total) alone, or all three terms.
-#[inline(always)]
-fn rows_out<S: Simd>(s: S, terms: bool, rows: &[[S::V; 3]; 3]) -> [[Lanes; 3]; 3] {
-    let mut out = [[[0.0; W]; 3]; 3];
-    for (r, row) in rows.iter().enumerate().take(if terms { 3 } else { 1 }) {
-        for c in 0..3 {
-            out[r][c] = s.store(row[c]);
-        }
-    }
-    out
-}
-
 /// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present;
 /// the sink `O` says whether the terms or their total are written.
 #[inline(always)]
@@ -1249,7 +1237,7 @@ where
                 i,
                 count,
             );
-            out.write(i, count, &rows_out(s, O::TERMS, &rows));
+            out.write(s, i, count, &rows);
             let bad = bad & (u32::MAX >> (32 - count));
             if bad != 0 {
                 call.fixup((&pos, &nor), per_point, i, bad, &mut |at, t| out.put(at, t));

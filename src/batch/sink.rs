@@ -5,7 +5,7 @@
 use core::ops::Range;
 
 use super::kernel::{Job, Lanes, W};
-use super::simd::Kernels;
+use super::simd::{Kernels, Simd};
 use super::soa::{SoaRgb, SoaTerms};
 use crate::terms::Terms;
 
@@ -19,8 +19,9 @@ pub(crate) trait Sink {
 
     /// Writes lanes `..count` of a chunk of points `i..i + count` (`count ≤ W`): `rows` is
     /// `[ambient, diffuse, specular]`, each `[r, g, b]`, with [`TERMS`](Self::TERMS); otherwise
-    /// only `rows[0]`, the total, is read.
-    fn write(&mut self, i: usize, count: usize, rows: &[[Lanes; 3]; 3]);
+    /// only `rows[0]`, the total, is read. Each vector goes straight to its slice (a buffer of
+    /// the nine rows on the stack cost a `memset` call per chunk).
+    fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]);
 
     /// Writes point `at` from the scalar path's terms.
     fn put(&mut self, at: usize, terms: &Terms);
@@ -52,10 +53,10 @@ fn write_lanes(out: &mut [f32], i: usize, count: usize, v: &Lanes) {
 }
 
 #[inline(always)]
-fn write_rgb(out: &mut SoaRgb<'_>, i: usize, count: usize, rgb: &[Lanes; 3]) {
-    write_lanes(out.r, i, count, &rgb[0]);
-    write_lanes(out.g, i, count, &rgb[1]);
-    write_lanes(out.b, i, count, &rgb[2]);
+fn write_rgb<S: Simd>(s: S, out: &mut SoaRgb<'_>, i: usize, count: usize, rgb: &[S::V; 3]) {
+    write_lanes(out.r, i, count, &s.store(rgb[0]));
+    write_lanes(out.g, i, count, &s.store(rgb[1]));
+    write_lanes(out.b, i, count, &s.store(rgb[2]));
 }
 
 fn put_rgb(out: &mut SoaRgb<'_>, at: usize, c: glam::Vec3) {
@@ -83,8 +84,8 @@ impl Sink for SoaRgb<'_> {
     }
 
     #[inline(always)]
-    fn write(&mut self, i: usize, count: usize, rows: &[[Lanes; 3]; 3]) {
-        write_rgb(self, i, count, &rows[0]);
+    fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]) {
+        write_rgb(s, self, i, count, &rows[0]);
     }
 
     fn put(&mut self, at: usize, terms: &Terms) {
@@ -117,10 +118,10 @@ impl Sink for SoaTerms<'_> {
     }
 
     #[inline(always)]
-    fn write(&mut self, i: usize, count: usize, rows: &[[Lanes; 3]; 3]) {
-        write_rgb(&mut self.ambient, i, count, &rows[0]);
-        write_rgb(&mut self.diffuse, i, count, &rows[1]);
-        write_rgb(&mut self.specular, i, count, &rows[2]);
+    fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]) {
+        write_rgb(s, &mut self.ambient, i, count, &rows[0]);
+        write_rgb(s, &mut self.diffuse, i, count, &rows[1]);
+        write_rgb(s, &mut self.specular, i, count, &rows[2]);
     }
 
     fn put(&mut self, at: usize, terms: &Terms) {
