@@ -633,6 +633,23 @@ fn main() {
          `phong` is `Shader::shade_surface(..)`.\n\
          - Both groups assert before timing that the two sides agree within 1e-4 on every input.\n"
     );
+    let frame_ms =
+        |f: &str| median_ns(&crit_dir().join("raster_frame").join(f), "new").map(|t| t / 1e6);
+    let (fb, fp) = (frame_ms("batch"), frame_ms("point"));
+    let _ = writeln!(
+        md,
+        "### A rasterizer's frame (`raster_frame`)\n\n\
+         The workspace's `raster` crate draws a 400 × 400 frame of a 5120-triangle sphere, shaded \
+         per pixel with Phong and one point light: the explorer's picture with \"per pixel\" and \
+         4 subdivisions (`cargo run --release -p explorer`). `batch` is how `raster` shades now: \
+         each visible fragment's attributes are kept and shaded 1024 at a time through \
+         `shade_gbuffer`. `point` is the same draw with one `shade` per pixel, how `raster` and \
+         so the explorer shaded before: the explorer's frame time before and after.\n\n\
+         | `batch` (ms) | `point` (ms) | point ÷ batch |\n|---:|---:|---:|\n| {} | {} | {} |\n",
+        fmt_opt(fb, 2),
+        fmt_opt(fp, 2),
+        fmt_opt(fp.zip(fb).map(|(p, b)| p / b), 2)
+    );
     let _ = writeln!(
         md,
         "\nWhere a target is missed, the causes found while tuning (perf profiles on this \
