@@ -168,7 +168,7 @@ fn accuracy_md() -> String {
         .iter()
         .filter(|r| {
             r.function.starts_with("Incidence")
-                || r.function.contains("specular")
+                || (r.function.contains("specular") && !r.function.starts_with("ResolvedModel::"))
                 || r.function.starts_with("Lambert")
                 || r.function.starts_with("naive: pow")
                 || r.function.starts_with("vector form")
@@ -177,7 +177,7 @@ fn accuracy_md() -> String {
     table(&mut o, &lobe_rows);
 
     o.push_str("## Normalisation factors and the pow strategies\n\n");
-    table(&mut o, &find(&["Normalization::", "PowStrategy::"]));
+    table(&mut o, &find(&["ResolvedModel::", "PowStrategy::"]));
 
     o.push_str("## Colour\n\n");
     table(&mut o, &find(&["srgb_", "gamma_", "linear_to_srgb8"]));

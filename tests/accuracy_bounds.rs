@@ -586,21 +586,21 @@ const BOUNDS: &[Bound] = &[
     ),
     // Factors and pow.
     Bound(
-        "Normalization::phong_factor",
+        "ResolvedModel::specular_scale, Phong, Energy",
         "s in",
         Ulp,
         3.0,
         "measured 1.79 ulp",
     ),
     Bound(
-        "Normalization::blinn_factor, Energy",
+        "ResolvedModel::specular_scale, Blinn-Phong, Energy",
         "s in",
         Ulp,
         3.0,
         "measured 1.80 ulp",
     ),
     Bound(
-        "Normalization::blinn_factor, EnergyExact",
+        "ResolvedModel::specular_scale, Blinn-Phong, EnergyExact",
         "s in",
         Ulp,
         6.0,
@@ -621,7 +621,7 @@ const BOUNDS: &[Bound] = &[
         "measured 1.80e-4; the doc's s·2⁻²⁴ is 6.0e-4 at s = 1e4, plus log2(s) roundings",
     ),
     Bound(
-        "Normalization::diffuse (1/π)",
+        "ResolvedModel::diffuse, Energy (1/π)",
         "s in",
         Ulp,
         2.0,

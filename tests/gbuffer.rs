@@ -637,18 +637,18 @@ fn tile_culling_stays_within_its_documented_bound() {
         24.0,
     )
     .unwrap();
-    let models: [(Model, f32, f32); 2] = [
-        (Phong::default().into(), 1.0, 1.0),
-        (
-            BlinnPhong {
-                normalization: Normalization::Energy,
-                ..BlinnPhong::default()
-            }
-            .into(),
-            Normalization::Energy.diffuse(1.0),
-            Normalization::Energy.blinn_factor(24.0),
-        ),
+    let models: [Model; 2] = [
+        Phong::default().into(),
+        BlinnPhong {
+            normalization: Normalization::Energy,
+            ..BlinnPhong::default()
+        }
+        .into(),
     ];
+    let models = models.map(|model| {
+        let r = phong::ResolvedModel::from(model);
+        (model, r.diffuse(1.0), r.specular_scale(24.0))
+    });
     let lights = frame.lights.len() as f32;
     for (model, dscale, sscale) in models {
         for level in Level::supported() {

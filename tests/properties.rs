@@ -399,7 +399,7 @@ proptest! {
             Model::Phong(m) => (m.normalization, m.gate),
             Model::BlinnPhong(m) => (m.normalization, m.gate),
         };
-        if !normalization.is_normalized() {
+        if normalization == phong::Normalization::None {
             prop_assert!(kd <= 1.0, "classic diffuse {kd} > 1 for {model:?} {g:?}");
             prop_assert!(ks <= 1.0, "classic specular {ks} > 1 for {model:?} {g:?} s={s}");
         }
@@ -407,7 +407,7 @@ proptest! {
             prop_assert_eq!(kd, 0.0, "diffuse below the horizon, {:?} {:?}", model, g);
             // The step gate, the cosine gate and every normalised lobe (which carry max(N·L, 0))
             // are exactly 0 here; only the "none" gate lets the back-face halo through.
-            if gate != SpecularGate::None || normalization.is_normalized() {
+            if gate != SpecularGate::None || normalization != phong::Normalization::None {
                 prop_assert_eq!(ks, 0.0, "specular below the horizon, {:?} {:?} s={}", model, g, s);
             }
         }

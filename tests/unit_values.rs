@@ -7,7 +7,8 @@ use core::f32::consts::{FRAC_1_SQRT_2, PI};
 use glam::{Mat3, Vec3};
 use phong::{
     Attenuation, BlinnPhong, Incidence, Lambert, LightColors, Material, Normalization, Phong,
-    PointLight, PowStrategy, ReflectionModel, Scene, SpecularGate, SpotLight, Viewer,
+    PointLight, PowStrategy, ReflectionModel, ResolvedModel, Scene, SpecularGate, SpotLight,
+    Viewer,
 };
 
 /// Relative size of one f32 ulp at 1: `x` and a correctly rounded `y` differ by at most ULP·|y|.
@@ -177,33 +178,46 @@ fn pow_strategies() {
 
 #[test]
 fn energy_normalisation_factors() {
+    // The factors as a model resolves them (`ResolvedModel::specular_scale`, `diffuse`).
+    let phong = |normalization| {
+        ResolvedModel::from(Phong {
+            normalization,
+            ..Default::default()
+        })
+    };
+    let blinn = |normalization| {
+        ResolvedModel::from(BlinnPhong {
+            normalization,
+            ..Default::default()
+        })
+    };
     // Phong: (s + 2)/(2π): s = 0 → 1/π; s = 2 → 2/π.
     close(
-        Normalization::Energy.phong_factor(0.0),
+        phong(Normalization::Energy).specular_scale(0.0),
         1.0 / PI,
         2.0,
         "Phong s=0",
     );
     close(
-        Normalization::Energy.phong_factor(2.0),
+        phong(Normalization::Energy).specular_scale(2.0),
         2.0 / PI,
         2.0,
         "Phong s=2",
     );
     close(
-        Normalization::EnergyExact.phong_factor(2.0),
+        phong(Normalization::EnergyExact).specular_scale(2.0),
         2.0 / PI,
         2.0,
         "Phong exact = common",
     );
     assert_eq!(
-        Normalization::None.phong_factor(100.0),
+        phong(Normalization::None).specular_scale(100.0),
         1.0,
         "classic Phong"
     );
     // Blinn common: (s + 8)/(8π): s = 8 → 2/π.
     close(
-        Normalization::Energy.blinn_factor(8.0),
+        blinn(Normalization::Energy).specular_scale(8.0),
         2.0 / PI,
         2.0,
         "Blinn s=8",
@@ -211,25 +225,34 @@ fn energy_normalisation_factors() {
     // Blinn exact: (s+2)(s+4)/(8π(2^(−s/2) + s)): s = 0 → 8/(8π·1) = 1/π;
     // s = 2 → 4·6/(8π(0.5 + 2)) = 24/(20π) = 1.2/π.
     close(
-        Normalization::EnergyExact.blinn_factor(0.0),
+        blinn(Normalization::EnergyExact).specular_scale(0.0),
         1.0 / PI,
         2.0,
         "exact s=0",
     );
     close(
-        Normalization::EnergyExact.blinn_factor(2.0),
+        blinn(Normalization::EnergyExact).specular_scale(2.0),
         1.2 / PI,
         3.0,
         "exact s=2",
     );
+    assert_eq!(
+        ResolvedModel::from(Lambert::default()).specular_scale(32.0),
+        0.0,
+        "no lobe"
+    );
     // Diffuse: N·L/π.
     close(
-        Normalization::Energy.diffuse(1.0),
+        phong(Normalization::Energy).diffuse(1.0),
         1.0 / PI,
         1.0,
         "diffuse 1/π",
     );
-    assert_eq!(Normalization::None.diffuse(-1.0), 0.0, "clamped diffuse");
+    assert_eq!(
+        phong(Normalization::None).diffuse(-1.0),
+        0.0,
+        "clamped diffuse"
+    );
     // A normalised Phong at the mirror with N·L = 1: (s+2)/(2π)·1·1; s = 8 → 5/π.
     let g = Incidence::new(Vec3::Z, Vec3::Z, Vec3::Z);
     let p = Phong {

@@ -108,12 +108,9 @@ impl<'a> PhongShader<'a> {
         let k = m.ambient().max(m.diffuse()).max(m.specular()).max_element();
         // Energy-normalised specular lobes can exceed 1.
         let s = m.shininess();
-        let lobe = match self.model {
-            Model::Phong(p) => p.normalization.phong_factor(s),
-            Model::BlinnPhong(b) => b.normalization.blinn_factor(s),
-            Model::Lambert(_) => 0.0,
-        }
-        .max(1.0);
+        let lobe = phong::ResolvedModel::from(self.model)
+            .specular_scale(s)
+            .max(1.0);
         self.cull = self
             .scene
             .lights

@@ -21,7 +21,8 @@ use crate::math;
 /// of the normalised specular, a normalised model gates specular by the cosine whatever its
 /// [`SpecularGate`](crate::SpecularGate) says. For Phong, `Energy` and `EnergyExact` are the same
 /// factor: `(s+2)/(2π)` already makes the cosine-weighted lobe integrate to 1 at normal incidence.
-/// Derivations: docs/derivations.md, section "Energy normalisation".
+/// Derivations: docs/derivations.md, section "Energy normalisation". A model's factors are read
+/// through its [`ResolvedModel`](crate::ResolvedModel): `diffuse` and `specular_scale`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Normalization {
@@ -38,7 +39,7 @@ impl Normalization {
     /// The diffuse lobe `max(N·L, 0)`, divided by `π` when normalised.
     #[must_use]
     #[inline]
-    pub fn diffuse(self, n_dot_l: f32) -> f32 {
+    pub(crate) fn diffuse(self, n_dot_l: f32) -> f32 {
         let c = math::max_or(n_dot_l, 0.0);
         match self {
             Normalization::None => c,
@@ -49,25 +50,18 @@ impl Normalization {
     /// Phong's factor: 1, or `(s+2)/(2π)` when normalised. Finite for every finite `s ≥ 0`.
     #[must_use]
     #[inline]
-    pub fn phong_factor(self, s: f32) -> f32 {
+    pub(crate) fn phong_factor(self, s: f32) -> f32 {
         match self {
             Normalization::None => 1.0,
             _ => ((s.max(0.0) + 2.0) * (1.0 / (2.0 * PI))).min(math::MAX),
         }
     }
 
-    /// Blinn-Phong's factor: 1, `(s+8)/(8π)`, or `(s+2)(s+4) / (8π(2^(−s/2) + s))`.
-    ///
-    /// ```
-    /// use phong::Normalization;
-    /// // At s = 0 both are the Lambertian 1/π.
-    /// let inv_pi = 1.0 / std::f32::consts::PI;
-    /// assert!((Normalization::Energy.blinn_factor(0.0) - inv_pi).abs() < 1e-7);
-    /// assert!((Normalization::EnergyExact.blinn_factor(0.0) - inv_pi).abs() < 1e-7);
-    /// ```
+    /// Blinn-Phong's factor: 1, `(s+8)/(8π)`, or `(s+2)(s+4) / (8π(2^(−s/2) + s))` (public as
+    /// [`ResolvedModel::specular_scale`](crate::ResolvedModel::specular_scale)).
     #[must_use]
     #[inline]
-    pub fn blinn_factor(self, s: f32) -> f32 {
+    pub(crate) fn blinn_factor(self, s: f32) -> f32 {
         let s = s.max(0.0);
         match self {
             Normalization::None => 1.0,
@@ -84,7 +78,7 @@ impl Normalization {
     /// Whether the lobes are normalised (and so cosine-gated).
     #[must_use]
     #[inline]
-    pub fn is_normalized(self) -> bool {
+    pub(crate) fn is_normalized(self) -> bool {
         self != Normalization::None
     }
 }

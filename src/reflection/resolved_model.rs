@@ -80,6 +80,32 @@ impl ResolvedModel {
         self.diffuse_scale * math::max_or(n_dot_l, 0.0)
     }
 
+    /// The specular lobe's normalisation factor at shininess `s`: 1 for a classic lobe,
+    /// `(s + 2)/(2π)` for a normalised Phong lobe, `(s + 8)/(8π)` (`Energy`) or
+    /// `(s + 2)(s + 4) / (8π (2^(−s/2) + s))` (`EnergyExact`) for a normalised Blinn-Phong lobe,
+    /// and 0 for a model without one (Lambert). It multiplies the lobe, so it bounds the
+    /// specular weight: what a light-culling or error bound needs.
+    ///
+    /// **Domain:** any `s`; NaN and negatives are read as 0, `+∞` as `f32::MAX`. **Returns** a
+    /// finite value `≥ 0`, saturated at `f32::MAX`.
+    ///
+    /// ```
+    /// use phong::{BlinnPhong, Lambert, Normalization, Phong, ResolvedModel};
+    /// let inv_pi = 1.0 / std::f32::consts::PI;
+    /// let energy = |n| ResolvedModel::from(Phong { normalization: n, ..Phong::default() });
+    /// assert_eq!(energy(Normalization::None).specular_scale(100.0), 1.0);
+    /// assert!((energy(Normalization::Energy).specular_scale(0.0) - inv_pi).abs() < 1e-7);
+    /// // Blinn-Phong's exact factor is the Lambertian 1/π at s = 0 too.
+    /// let exact = ResolvedModel::from(BlinnPhong { normalization: Normalization::EnergyExact, ..BlinnPhong::default() });
+    /// assert!((exact.specular_scale(0.0) - inv_pi).abs() < 1e-7);
+    /// assert_eq!(ResolvedModel::from(Lambert::default()).specular_scale(32.0), 0.0);
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn specular_scale(&self, s: f32) -> f32 {
+        self.at_shininess(s).scale
+    }
+
     /// Whether [`gate`](Self::gate)`(0)` is 0 (the step and cosine gates): a zero normal or
     /// light direction, whose `N·L` is 0, then has no highlight whatever its lobe's base.
     #[inline(always)]

@@ -7,7 +7,8 @@
 
 use glam::{DVec3, Vec3};
 use phong::{
-    LightSource, Material, Model, Normalization, PowStrategy, Scene, SpecularGate, Viewer,
+    LightSource, Material, Model, Normalization, PowStrategy, ResolvedModel, Scene, SpecularGate,
+    Viewer,
 };
 
 /// The most `f32` operations between a light's inputs and the output channel, each of which may
@@ -113,13 +114,16 @@ pub(crate) fn range<L: LightSource>(
     n: Vec3,
 ) -> Range {
     let (gate, normalization, lobe) = parts(model);
+    let normalized = normalization != Normalization::None;
+    // The model's own lobe factor at this shininess (1 for a classic lobe).
+    let k_norm = ResolvedModel::from(*model).specular_scale(material.shininess());
     let s = material.shininess() as f64;
     let n = unit(n);
     let v = match scene.viewer {
         Viewer::At(eye) => unit(sub_saturating(eye, p)),
         Viewer::Infinite(d) => unit(d),
     };
-    let dscale = if normalization.is_normalized() {
+    let dscale = if normalized {
         1.0 / core::f64::consts::PI
     } else {
         1.0
@@ -138,9 +142,6 @@ pub(crate) fn range<L: LightSource>(
         let sample = light.sample(p);
         let f0 = sample.factor as f64;
         let c = light.colors();
-        let k_norm = normalization
-            .phong_factor(s as f32)
-            .max(normalization.blinn_factor(s as f32));
         underflow += f0.max(1.0)
             * (big(c.ambient()) * big(material.ambient())
                 + big(c.diffuse()) * big(material.diffuse())
@@ -178,22 +179,14 @@ pub(crate) fn range<L: LightSource>(
             } else {
                 1.0
             };
-            (
-                clamp_iv((lo, hi), 0.0, 1.0),
-                0.5 * s,
-                normalization.blinn_factor(s as f32) as f64,
-            )
+            (clamp_iv((lo, hi), 0.0, 1.0), 0.5 * s, k_norm as f64)
         } else {
             let nn = mul_iv(nl, nv);
             let rv = (2.0 * nn.0 - lv.1, 2.0 * nn.1 - lv.0);
-            (
-                clamp_iv(rv, -1.0, 1.0),
-                s,
-                normalization.phong_factor(s as f32) as f64,
-            )
+            (clamp_iv(rv, -1.0, 1.0), s, k_norm as f64)
         };
         let lobe = lobe_iv(base, exponent, pow);
-        let g = if normalization.is_normalized() {
+        let g = if normalized {
             (factor * nl.0.max(0.0), factor * nl.1.max(0.0))
         } else {
             match gate {

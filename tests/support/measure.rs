@@ -9,8 +9,8 @@
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use phong::{
     Attenuation, BlinnPhong, Incidence, Lambert, Light, LightColors, Material, Model,
-    Normalization, Phong, PointLight, PowStrategy, ReflectionModel, SpecularGate, SpotLight,
-    Viewer,
+    Normalization, Phong, PointLight, PowStrategy, ReflectionModel, ResolvedModel, SpecularGate,
+    SpotLight, Viewer,
 };
 
 use crate::reference as r;
@@ -1039,6 +1039,20 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
     {
         let mut rng = Rng::new(34);
         let mut st: [Stats; 6] = Default::default();
+        let phong_energy = ResolvedModel::from(Phong {
+            normalization: Normalization::Energy,
+            ..Phong::default()
+        });
+        let blinn = |normalization| {
+            ResolvedModel::from(BlinnPhong {
+                normalization,
+                ..BlinnPhong::default()
+            })
+        };
+        let (blinn_energy, blinn_exact) = (
+            blinn(Normalization::Energy),
+            blinn(Normalization::EnergyExact),
+        );
         for _ in 0..n {
             let s = if rng.chance(0.05) {
                 0.0
@@ -1048,19 +1062,19 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
             let sd = s as f64;
             let input = || format!("s = {s}");
             st[0].scalar(
-                Normalization::Energy.phong_factor(s),
+                phong_energy.specular_scale(s),
                 r::phong_factor(Normalization::Energy, sd),
                 1e-30,
                 input,
             );
             st[1].scalar(
-                Normalization::Energy.blinn_factor(s),
+                blinn_energy.specular_scale(s),
                 r::blinn_factor(Normalization::Energy, sd),
                 1e-30,
                 input,
             );
             st[2].scalar(
-                Normalization::EnergyExact.blinn_factor(s),
+                blinn_exact.specular_scale(s),
                 r::blinn_factor(Normalization::EnergyExact, sd),
                 1e-30,
                 input,
@@ -1083,7 +1097,7 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
             );
             let nl = rng.range(-1.0, 1.0) as f32;
             st[5].scalar(
-                Normalization::Energy.diffuse(nl),
+                phong_energy.diffuse(nl),
                 r::diffuse(Normalization::Energy, nl as f64),
                 1e-30,
                 || format!("n·l = {nl}"),
@@ -1091,12 +1105,12 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
         }
         let d = "s in [0, 1e4] (log-uniform, 0 now and then); x in [0, 1]";
         let names = [
-            "Normalization::phong_factor",
-            "Normalization::blinn_factor, Energy",
-            "Normalization::blinn_factor, EnergyExact",
+            "ResolvedModel::specular_scale, Phong, Energy",
+            "ResolvedModel::specular_scale, Blinn-Phong, Energy",
+            "ResolvedModel::specular_scale, Blinn-Phong, EnergyExact",
             "PowStrategy::Exact.lobe",
             "PowStrategy::Squaring.lobe (integer s)",
-            "Normalization::diffuse (1/π)",
+            "ResolvedModel::diffuse, Energy (1/π)",
         ];
         for (i, s) in st.into_iter().enumerate() {
             out.push(row(names[i], ADV, d, true, 1e-30, s));
