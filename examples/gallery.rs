@@ -478,7 +478,7 @@ fn gouraud_vs_phong(opts: &Options, g: &mut Gallery) {
         if !facing {
             continue;
         }
-        let bound = phong::shading_rate::gouraud_error_bound(shader.model, &mat, &scene, p, n);
+        let bound = phong::shading_rate::gouraud_error_bound(&shader.model, &mat, &scene, p, n);
         if bound <= tol {
             chosen_bound = chosen_bound.max(bound);
             chosen_measured = chosen_measured.max(measured[t]);

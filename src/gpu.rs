@@ -14,8 +14,8 @@
 use glam::Vec3;
 
 use crate::{
-    Attenuation, BlinnPhong, Lambert, Light, LightSource, Material, Model, Normalization, Phong,
-    SpecularGate, Viewer,
+    Attenuation, BatchModel, BlinnPhong, Lambert, Light, LightSource, Material, Model,
+    Normalization, Phong, SpecularGate, Viewer,
 };
 
 /// [`Material`] for a uniform buffer: 64 bytes.
@@ -191,14 +191,19 @@ impl GpuParams {
     /// ```
     /// use glam::Vec3;
     /// use phong::{gpu::GpuParams, Phong, Viewer};
-    /// let p = GpuParams::new(&Phong::learnopengl().into(), Viewer::At(Vec3::Z), Vec3::ZERO, 1);
+    /// let p = GpuParams::new(&Phong::learnopengl(), Viewer::At(Vec3::Z), Vec3::ZERO, 1);
     /// assert_eq!((p.model, p.gate, p.light_count), (1, 2, 1));
     /// let bytes: &[u8] = bytemuck::bytes_of(&p);
     /// assert_eq!(bytes.len(), 48);
     /// ```
     #[must_use]
-    pub fn new(model: &Model, viewer: Viewer, scene_ambient: Vec3, light_count: u32) -> Self {
-        let (model_code, gate, normalization) = match *model {
+    pub fn new<M: BatchModel>(
+        model: &M,
+        viewer: Viewer,
+        scene_ambient: Vec3,
+        light_count: u32,
+    ) -> Self {
+        let (model_code, gate, normalization) = match (*model).into() {
             Model::Lambert(Lambert { normalization }) => (0, SpecularGate::Step, normalization),
             Model::Phong(Phong {
                 gate,

@@ -38,6 +38,7 @@
 
 use glam::Vec3;
 
+use crate::BatchModel;
 use crate::light::Light;
 use crate::material::Material;
 use crate::model::Model;
@@ -113,26 +114,26 @@ use triangle::{Triangle, distance_to_triangle, enclosing_radius_squared, normal_
 /// let material = Material::try_from_color(Vec3::ONE, 32.0)?;
 /// let p = [Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.1, 0.0, 1.0), Vec3::new(0.0, 0.1, 1.0)];
 /// // A flat triangle, a directional light and a distant viewer: N, L, V constant, so exact.
-/// let flat = phong::shading_rate::gouraud_error_bound(Phong::default(), &material, &scene, p, [Vec3::Z; 3]);
+/// let flat = phong::shading_rate::gouraud_error_bound(&Phong::default(), &material, &scene, p, [Vec3::Z; 3]);
 /// assert!(flat < 1e-3);
 /// // The same triangle with normals spread by 45°, as on a very coarse sphere, under the highlight.
 /// let curved = [Vec3::Z, Vec3::new(1.0, 0.0, 1.0).normalize(), Vec3::new(0.0, 1.0, 1.0).normalize()];
-/// assert!(phong::shading_rate::gouraud_error_bound(Phong::default(), &material, &scene, p, curved) > 0.1);
+/// assert!(phong::shading_rate::gouraud_error_bound(&Phong::default(), &material, &scene, p, curved) > 0.1);
 /// # Ok::<(), phong::PhongError>(())
 /// ```
 #[must_use]
 pub fn gouraud_error_bound<M, L>(
-    model: M,
+    model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     positions: [Vec3; 3],
     normals: [Vec3; 3],
 ) -> f32
 where
-    M: Into<Model>,
+    M: BatchModel,
     L: Copy + Into<Light>,
 {
-    let model = model.into();
+    let model: Model = (*model).into();
     let n = normals.map(normalize_or_zero);
     let tri = Triangle {
         p: positions,
@@ -177,12 +178,12 @@ where
 /// let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
 /// // Facing away from the light: nothing but (constant) ambient.
 /// let away = [-Vec3::Z; 3];
-/// assert!(phong::shading_rate::gouraud_within_tolerance(BlinnPhong::default(), &m, &scene, p, away, 2.0 / 255.0));
+/// assert!(phong::shading_rate::gouraud_within_tolerance(&BlinnPhong::default(), &m, &scene, p, away, 2.0 / 255.0));
 /// # Ok::<(), phong::PhongError>(())
 /// ```
 #[must_use]
 pub fn gouraud_within_tolerance<M, L>(
-    model: M,
+    model: &M,
     material: &Material,
     scene: &Scene<'_, L>,
     positions: [Vec3; 3],
@@ -190,7 +191,7 @@ pub fn gouraud_within_tolerance<M, L>(
     tolerance: f32,
 ) -> bool
 where
-    M: Into<Model>,
+    M: BatchModel,
     L: Copy + Into<Light>,
 {
     tolerance >= 0.0 && gouraud_error_bound(model, material, scene, positions, normals) <= tolerance

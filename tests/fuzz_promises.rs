@@ -1170,7 +1170,7 @@ fn advisor(r: &mut Rng, c: &mut Check) {
     };
     let model = r.model();
     let material = r.material();
-    let b = phong::shading_rate::gouraud_error_bound(model, &material, &scene, positions, normals);
+    let b = phong::shading_rate::gouraud_error_bound(&model, &material, &scene, positions, normals);
     c.count("gouraud_error_bound", 1);
     c.expect("gouraud_error_bound", b.is_finite() && b >= 0.0, || {
         format!("{model:?} {material:?} {lights:?} {positions:?} {normals:?} -> {b}")

@@ -177,7 +177,7 @@ proptest! {
         let material = Material::try_new(ka, kd, ks, s).unwrap();
         let lights = [light];
         let scene = Scene { lights: &lights, ambient: Vec3::splat(0.05), viewer };
-        let bound = phong::shading_rate::gouraud_error_bound(model, &material, &scene, p, n);
+        let bound = phong::shading_rate::gouraud_error_bound(&model, &material, &scene, p, n);
         let worst = measured_worst(&model, &material, &scene, p, n);
         prop_assert!(bound.is_finite() && bound >= 0.0, "bound {bound}");
         prop_assert!(
@@ -201,7 +201,8 @@ fn a_flat_triangle_under_a_distant_light_is_nearly_exact() {
     };
     let m = Material::try_from_color(Vec3::ONE, 64.0).unwrap();
     let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
-    let b = phong::shading_rate::gouraud_error_bound(Phong::default(), &m, &scene, p, [Vec3::Z; 3]);
+    let b =
+        phong::shading_rate::gouraud_error_bound(&Phong::default(), &m, &scene, p, [Vec3::Z; 3]);
     assert!(b < 1e-4, "flat triangle, constant L and V: bound {b}");
 }
 
@@ -223,7 +224,7 @@ fn the_bound_is_small_on_a_fine_sphere_away_from_the_highlight() {
     let dir = |a: f32, b: f32| Vec3::new(a.sin() * b.cos(), b.sin(), a.cos() * b.cos());
     let a0 = 10f32.to_radians();
     let n = [dir(a0, 0.0), dir(a0 + d, 0.0), dir(a0, d)];
-    let bound = phong::shading_rate::gouraud_error_bound(Phong::default(), &m, &scene, n, n);
+    let bound = phong::shading_rate::gouraud_error_bound(&Phong::default(), &m, &scene, n, n);
     assert!(bound < 1.0 / 255.0, "fine triangle: bound {bound}");
 }
 
@@ -239,7 +240,7 @@ fn a_tolerance_that_is_nan_or_negative_is_never_met() {
     for t in [f32::NAN, -1.0] {
         assert!(
             !phong::shading_rate::gouraud_within_tolerance(
-                Lambert::default(),
+                &Lambert::default(),
                 &m,
                 &scene,
                 p,
@@ -251,7 +252,7 @@ fn a_tolerance_that_is_nan_or_negative_is_never_met() {
     }
     assert!(
         phong::shading_rate::gouraud_within_tolerance(
-            Lambert::default(),
+            &Lambert::default(),
             &m,
             &scene,
             p,
@@ -324,7 +325,7 @@ fn degenerate_triangles_still_get_a_finite_bound_that_holds() {
             viewer,
         };
         for model in [Model::from(Phong::default()), BlinnPhong::default().into()] {
-            let bound = phong::shading_rate::gouraud_error_bound(model, &m, &scene, p, n);
+            let bound = phong::shading_rate::gouraud_error_bound(&model, &m, &scene, p, n);
             let worst = measured_worst(&model, &m, &scene, p, n);
             assert!(bound.is_finite() && bound >= 0.0, "{name}: bound {bound}");
             assert!(worst <= bound, "{name}: measured {worst} > bound {bound}");
@@ -353,7 +354,7 @@ fn a_directional_lights_diffuse_bound_is_sharp() {
     };
     let m = Material::try_from_color(Vec3::ONE, 32.0).unwrap();
     let model = Model::from(Lambert::default());
-    let bound = phong::shading_rate::gouraud_error_bound(model, &m, &scene, p, p);
+    let bound = phong::shading_rate::gouraud_error_bound(&model, &m, &scene, p, p);
     let worst = measured_worst(&model, &m, &scene, p, p);
     assert!(
         worst <= bound && bound <= 1.2 * worst,
@@ -381,7 +382,7 @@ fn a_grazing_constant_normal_is_covered_by_the_rounding_allowance() {
     let p = [Vec3::ZERO, Vec3::Z, Vec3::Y];
     let n = [Vec3::new(0.88, -0.06, -0.48); 3];
     let model = Model::from(Lambert::default());
-    let bound = phong::shading_rate::gouraud_error_bound(model, &m, &scene, p, n);
+    let bound = phong::shading_rate::gouraud_error_bound(&model, &m, &scene, p, n);
     let worst = measured_worst(&model, &m, &scene, p, n);
     assert!(
         worst > 2e-8,
@@ -430,7 +431,7 @@ fn every_pow_strategy_is_covered_on_small_triangles() {
                     pow,
                     ..Phong::default()
                 });
-                let bound = phong::shading_rate::gouraud_error_bound(model, &m, &scene, p, n);
+                let bound = phong::shading_rate::gouraud_error_bound(&model, &m, &scene, p, n);
                 let worst = measured_worst(&model, &m, &scene, p, n);
                 assert!(
                     worst <= bound,
@@ -482,7 +483,7 @@ fn tiny_lobes_near_the_flush_and_underflow_thresholds_are_covered() {
                     pow,
                     ..Phong::default()
                 });
-                let bound = phong::shading_rate::gouraud_error_bound(model, &m, &scene, p, n);
+                let bound = phong::shading_rate::gouraud_error_bound(&model, &m, &scene, p, n);
                 let worst = measured_worst(&model, &m, &scene, p, n);
                 assert!(
                     worst <= bound,
@@ -541,7 +542,7 @@ proptest! {
     ) {
         let lights = [light];
         let scene = Scene { lights: &lights, ambient: Vec3::ZERO, viewer };
-        let bound = phong::shading_rate::gouraud_error_bound(model, &m, &scene, p, n);
+        let bound = phong::shading_rate::gouraud_error_bound(&model, &m, &scene, p, n);
         let worst = measured_worst(&model, &m, &scene, p, n);
         prop_assert!(
             worst <= bound,

@@ -242,7 +242,7 @@ impl SurfaceShader for PhongShader<'_> {
     fn per_vertex_ok(&self, positions: [Vec3; 3], normals: [Vec3; 3]) -> bool {
         self.texture.is_none()
             && phong::shading_rate::gouraud_within_tolerance(
-                self.model,
+                &self.model,
                 &self.material,
                 &self.scene,
                 positions,

@@ -84,9 +84,16 @@ pub(crate) mod sealed {
     pub trait Sealed {}
 }
 
-/// A reflection model the batch path accepts: [`Lambert`], [`Phong`], [`BlinnPhong`] and
-/// [`Model`], with every gate, normalisation and [`PowStrategy`]. Sealed.
-pub trait BatchModel: ReflectionModel + sealed::Sealed {
+/// One of the crate's own models, whose whole description the crate knows: [`Lambert`],
+/// [`Phong`], [`BlinnPhong`] and [`Model`], with every gate, normalisation and [`PowStrategy`].
+/// Sealed.
+///
+/// Every function that needs that description takes the model as `&M` with `M: BatchModel`: the
+/// batch path, [`shading_rate`](crate::shading_rate)'s advisor and
+/// [`GpuParams::new`](crate::gpu::GpuParams::new). ([`shade`](crate::shade()) takes any
+/// [`ReflectionModel`] as `&M`; [`Shader::new`](crate::Shader::new) keeps its model and takes it
+/// by value.)
+pub trait BatchModel: ReflectionModel + Copy + Into<Model> + sealed::Sealed {
     /// The model's constants for the kernel at shininess `s`.
     #[doc(hidden)]
     fn lane_model(&self, s: f32) -> LaneModel;
