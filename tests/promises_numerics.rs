@@ -13,6 +13,7 @@
 
 #[path = "support/batch_range.rs"]
 mod batch_range;
+mod strategies;
 
 use glam::{DVec3, Vec3};
 use phong::{
@@ -21,6 +22,7 @@ use phong::{
     Scene, SoaRgb, SoaVec3, SpecularGate, Viewer,
 };
 use proptest::prelude::*;
+use strategies::any_model;
 
 // ---------------------------------------------------------------------------------------------
 // Strategies
@@ -33,46 +35,6 @@ fn unit_vec3() -> impl Strategy<Value = Vec3> {
         DVec3::new(r * phi.cos(), r * phi.sin(), z)
             .normalize()
             .as_vec3()
-    })
-}
-
-/// Every pow strategy, `Auto` included.
-fn any_pow() -> impl Strategy<Value = PowStrategy> {
-    prop::sample::select(
-        PowStrategy::ALL
-            .iter()
-            .copied()
-            .chain([PowStrategy::Auto])
-            .collect::<Vec<_>>(),
-    )
-}
-
-/// Any model with any gate, normalisation and pow strategy.
-fn any_model() -> impl Strategy<Value = Model> {
-    let gate = prop::sample::select(vec![
-        SpecularGate::Step,
-        SpecularGate::Cosine,
-        SpecularGate::None,
-    ]);
-    let norm = prop::sample::select(vec![
-        Normalization::None,
-        Normalization::Energy,
-        Normalization::EnergyExact,
-    ]);
-    (0u8..3, gate, norm, any_pow()).prop_map(|(k, gate, normalization, pow)| match k {
-        0 => Lambert { normalization }.into(),
-        1 => Phong {
-            gate,
-            normalization,
-            pow,
-        }
-        .into(),
-        _ => BlinnPhong {
-            gate,
-            normalization,
-            pow,
-        }
-        .into(),
     })
 }
 

@@ -5,12 +5,13 @@
 use glam::Vec3;
 use phong::{
     Attenuation, BlinnPhong, DirectionalLight, Lambert, Light, LightColors, Material, Model,
-    Normalization, Phong, PointLight, PowStrategy, Scene, SpecularGate, SpotLight, Viewer,
+    Normalization, Phong, PointLight, PowStrategy, Scene, SpotLight, Viewer,
 };
 use proptest::prelude::*;
 
 #[path = "support/rng.rs"]
 mod rng;
+mod strategies;
 use rng::Rng;
 
 /// A point in the cube `[-r, r]³`.
@@ -44,43 +45,15 @@ fn triangle() -> impl Strategy<Value = ([Vec3; 3], [Vec3; 3])> {
         })
 }
 
-/// Every pow strategy, `Auto` included: the bound allows for each one's error.
-fn pow_strategy() -> impl Strategy<Value = PowStrategy> {
-    prop::sample::select(
-        PowStrategy::ALL
-            .iter()
-            .copied()
-            .chain([PowStrategy::Auto])
-            .collect::<Vec<_>>(),
-    )
-}
-
+/// Any model, every pow strategy (`Auto` included: the bound allows for each one's error), the
+/// classic lobes three times as often as the normalised ones.
 fn model() -> impl Strategy<Value = Model> {
-    let gate = prop_oneof![
-        Just(SpecularGate::Step),
-        Just(SpecularGate::Cosine),
-        Just(SpecularGate::None)
-    ];
     let norm = prop_oneof![
         3 => Just(Normalization::None),
         1 => Just(Normalization::Energy),
         1 => Just(Normalization::EnergyExact)
     ];
-    (0..3u8, gate, norm, pow_strategy()).prop_map(|(k, gate, normalization, pow)| match k {
-        0 => Lambert { normalization }.into(),
-        1 => Phong {
-            gate,
-            normalization,
-            pow,
-        }
-        .into(),
-        _ => BlinnPhong {
-            gate,
-            normalization,
-            pow,
-        }
-        .into(),
-    })
+    strategies::model_of(strategies::gate(), norm, strategies::any_pow())
 }
 
 fn attenuation() -> impl Strategy<Value = Attenuation> {

@@ -6,13 +6,16 @@
 //! and `Incidence::new` need unit vectors, the unchecked constructors valid fields); everything
 //! outside it goes to the total or checked variant (`normalize_or_zero`, `try_*`, `shade`).
 
+mod strategies;
+
 use glam::{Mat3, Vec3};
 use phong::{
-    Attenuation, BlinnPhong, DirectionalLight, Incidence, Lambert, Light, LightColors, LightSource,
-    Material, Model, Normalization, Phong, PhongError, PointLight, PowStrategy, ReflectionModel,
-    ResolvedModel, Scene, SpecularGate, SpotLight, Viewer,
+    Attenuation, BlinnPhong, DirectionalLight, Incidence, Light, LightColors, LightSource,
+    Material, Model, Normalization, Phong, PhongError, PointLight, ReflectionModel, ResolvedModel,
+    Scene, SpotLight, Viewer,
 };
 use proptest::prelude::*;
+use strategies::{gate, model, normalization, pow_strategy};
 
 const CASES: u32 = 5000;
 
@@ -84,46 +87,6 @@ fn colour() -> impl Strategy<Value = Vec3> {
 
 fn shininess() -> impl Strategy<Value = f32> {
     prop_oneof![non_negative(), 0.0f32..1e4]
-}
-
-fn gate() -> impl Strategy<Value = SpecularGate> {
-    prop::sample::select(vec![
-        SpecularGate::Step,
-        SpecularGate::Cosine,
-        SpecularGate::None,
-    ])
-}
-
-fn normalization() -> impl Strategy<Value = Normalization> {
-    prop::sample::select(vec![
-        Normalization::None,
-        Normalization::Energy,
-        Normalization::EnergyExact,
-    ])
-}
-
-fn pow_strategy() -> impl Strategy<Value = PowStrategy> {
-    prop::sample::select(vec![PowStrategy::Exact, PowStrategy::Squaring])
-}
-
-fn model() -> impl Strategy<Value = Model> {
-    (0u8..3, gate(), normalization(), pow_strategy()).prop_map(|(k, gate, normalization, pow)| {
-        match k {
-            0 => Lambert { normalization }.into(),
-            1 => Phong {
-                gate,
-                normalization,
-                pow,
-            }
-            .into(),
-            _ => BlinnPhong {
-                gate,
-                normalization,
-                pow,
-            }
-            .into(),
-        }
-    })
 }
 
 /// An attenuation with arbitrary finite fields (the factor must be robust to any of them).

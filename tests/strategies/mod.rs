@@ -143,28 +143,52 @@ pub(crate) fn normalization() -> impl Strategy<Value = Normalization> {
     ]
 }
 
-/// A `pow` strategy.
+/// A `pow` strategy whose error is `powf`'s or repeated squaring's: `Exact` or `Squaring`.
 pub(crate) fn pow_strategy() -> impl Strategy<Value = PowStrategy> {
     prop_oneof![Just(PowStrategy::Exact), Just(PowStrategy::Squaring)]
 }
 
-/// Any of the three models, with any gate, normalisation and `pow` strategy.
-pub(crate) fn model() -> impl Strategy<Value = Model> {
-    (0u8..3, gate(), normalization(), pow_strategy()).prop_map(|(k, gate, normalization, pow)| {
-        match k {
-            0 => Model::Lambert(Lambert { normalization }),
-            1 => Model::Phong(Phong {
-                gate,
-                normalization,
-                pow,
-            }),
-            _ => Model::BlinnPhong(BlinnPhong {
-                gate,
-                normalization,
-                pow,
-            }),
-        }
+/// Every `pow` strategy, `Auto` included.
+pub(crate) fn any_pow() -> impl Strategy<Value = PowStrategy> {
+    prop::sample::select(
+        PowStrategy::ALL
+            .iter()
+            .copied()
+            .chain([PowStrategy::Auto])
+            .collect::<Vec<_>>(),
+    )
+}
+
+/// One of the three models (uniformly) with its gate, normalisation and `pow` strategy drawn from
+/// the given strategies: each test file picks the parts its property covers.
+pub(crate) fn model_of(
+    gate: impl Strategy<Value = SpecularGate>,
+    normalization: impl Strategy<Value = Normalization>,
+    pow: impl Strategy<Value = PowStrategy>,
+) -> impl Strategy<Value = Model> {
+    (0u8..3, gate, normalization, pow).prop_map(|(k, gate, normalization, pow)| match k {
+        0 => Model::Lambert(Lambert { normalization }),
+        1 => Model::Phong(Phong {
+            gate,
+            normalization,
+            pow,
+        }),
+        _ => Model::BlinnPhong(BlinnPhong {
+            gate,
+            normalization,
+            pow,
+        }),
     })
+}
+
+/// Any of the three models, with any gate and normalisation, and `Exact` or `Squaring`.
+pub(crate) fn model() -> impl Strategy<Value = Model> {
+    model_of(gate(), normalization(), pow_strategy())
+}
+
+/// Any of the three models, with any gate, normalisation and `pow` strategy (`Auto` included).
+pub(crate) fn any_model() -> impl Strategy<Value = Model> {
+    model_of(gate(), normalization(), any_pow())
 }
 
 /// A unit quaternion's rotation matrix, from a random axis and angle.
