@@ -174,9 +174,11 @@ fn blinn_model(pow: PowStrategy) -> BlinnPhong {
 ///
 /// The compiler sees here what it sees in `naive_glam`: one light and the model (there written
 /// into the code, here `M::default()`); the light's values and the material arrive at run time
-/// on both sides.
+/// on both sides. `OPAQUE` passes each point through `black_box`, so the compiler cannot vectorise
+/// across points: one point per call, as a recursive ray tracer or a per-pixel callback shades
+/// (`scalar_opaque`).
 #[inline(never)]
-fn shader_loop<M: phong::ReflectionModel + Default>(
+fn shader_loop<M: phong::ReflectionModel + Default, const OPAQUE: bool>(
     light: &PointLight,
     mat: &Material,
     p: &[Vec3],
@@ -186,24 +188,8 @@ fn shader_loop<M: phong::ReflectionModel + Default>(
     let lights = [*light];
     let shader = phong::Shader::new(M::default(), mat, &scene(&lights));
     for i in 0..p.len() {
-        out[i] = shader.shade(p[i], n[i]).total();
-    }
-}
-
-/// [`shader_loop`] with each point passed through `black_box`, so the compiler cannot vectorise
-/// across points: one point per call, as a recursive ray tracer or a per-pixel callback shades.
-#[inline(never)]
-fn opaque_loop<M: phong::ReflectionModel + Default>(
-    light: &PointLight,
-    mat: &Material,
-    p: &[Vec3],
-    n: &[Vec3],
-    out: &mut [Vec3],
-) {
-    let lights = [*light];
-    let shader = phong::Shader::new(M::default(), mat, &scene(&lights));
-    for i in 0..p.len() {
-        out[i] = shader.shade(black_box(p[i]), n[i]).total();
+        let q = if OPAQUE { black_box(p[i]) } else { p[i] };
+        out[i] = shader.shade(q, n[i]).total();
     }
 }
 
@@ -262,11 +248,11 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
         naive_glam(kind, s, &p, &nn, naive);
         match kind {
             Kind::Phong => {
-                shader_loop::<Phong>(&lights[0], &m, &p, &nn, scalar);
+                shader_loop::<Phong, false>(&lights[0], &m, &p, &nn, scalar);
                 for i in 0..n {
                     assert_close("scalar", scalar[i], naive[i], i);
                 }
-                opaque_loop::<Phong>(&lights[0], &m, &p, &nn, scalar);
+                shader_loop::<Phong, true>(&lights[0], &m, &p, &nn, scalar);
                 for i in 0..n {
                     assert_close("scalar_opaque", scalar[i], naive[i], i);
                 }
@@ -274,11 +260,11 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
                 batch_run(level, &phong_model(PowStrategy::Auto), &m, &scene, soa);
             }
             Kind::Blinn => {
-                shader_loop::<BlinnPhong>(&lights[0], &m, &p, &nn, scalar);
+                shader_loop::<BlinnPhong, false>(&lights[0], &m, &p, &nn, scalar);
                 for i in 0..n {
                     assert_close("scalar", scalar[i], naive[i], i);
                 }
-                opaque_loop::<BlinnPhong>(&lights[0], &m, &p, &nn, scalar);
+                shader_loop::<BlinnPhong, true>(&lights[0], &m, &p, &nn, scalar);
                 for i in 0..n {
                     assert_close("scalar_opaque", scalar[i], naive[i], i);
                 }
@@ -312,7 +298,7 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
             let model = phong_model(PowStrategy::Auto);
             g.bench_function("scalar", |b| {
                 b.iter(|| {
-                    shader_loop::<Phong>(
+                    shader_loop::<Phong, false>(
                         black_box(&lights[0]),
                         &m32,
                         black_box(&p),
@@ -323,7 +309,7 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
             });
             g.bench_function("scalar_opaque", |b| {
                 b.iter(|| {
-                    opaque_loop::<Phong>(
+                    shader_loop::<Phong, true>(
                         black_box(&lights[0]),
                         &m32,
                         black_box(&p),
@@ -355,7 +341,7 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
             let model = blinn_model(PowStrategy::Auto);
             g.bench_function("scalar", |b| {
                 b.iter(|| {
-                    shader_loop::<BlinnPhong>(
+                    shader_loop::<BlinnPhong, false>(
                         black_box(&lights[0]),
                         &m32,
                         black_box(&p),
@@ -366,7 +352,7 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
             });
             g.bench_function("scalar_opaque", |b| {
                 b.iter(|| {
-                    opaque_loop::<BlinnPhong>(
+                    shader_loop::<BlinnPhong, true>(
                         black_box(&lights[0]),
                         &m32,
                         black_box(&p),

@@ -151,6 +151,45 @@ fn models() -> Vec<(String, Model)> {
     v
 }
 
+/// The points' vectors as the G-buffer's `f32` slices.
+struct Split {
+    p: [Vec<f32>; 3],
+    n: [Vec<f32>; 3],
+    ka: [Vec<f32>; 3],
+    kd: [Vec<f32>; 3],
+    ks: [Vec<f32>; 3],
+}
+
+impl Split {
+    fn new(g: &Points) -> Self {
+        Split {
+            p: split(&g.p),
+            n: split(&g.n),
+            ka: split(&g.ka),
+            kd: split(&g.kd),
+            ks: split(&g.ks),
+        }
+    }
+
+    /// The G-buffer of `g`'s positions and normals, with its surfaces and visibilities if asked.
+    fn gbuffer<'a>(&'a self, g: &'a Points, with_surface: bool, with_vis: bool) -> GBuffer<'a> {
+        let v3 = |a: &'a [Vec<f32>; 3]| SoaVec3::new(&a[0], &a[1], &a[2]);
+        let mut buffer = GBuffer::new(v3(&self.p), v3(&self.n));
+        if with_surface {
+            buffer = buffer.with_surface(SoaSurface {
+                ambient: v3(&self.ka),
+                diffuse: v3(&self.kd),
+                specular: v3(&self.ks),
+                shininess: &g.s,
+            });
+        }
+        if with_vis {
+            buffer = buffer.with_visibility(&g.vis);
+        }
+        buffer
+    }
+}
+
 /// `shade_gbuffer` at `level`, every point's colour.
 fn run(
     level: Level,
@@ -162,23 +201,8 @@ fn run(
     with_vis: bool,
 ) -> Vec<Vec3> {
     let len = g.p.len();
-    let (p, n) = (split(&g.p), split(&g.n));
-    let (ka, kd, ks) = (split(&g.ka), split(&g.kd), split(&g.ks));
-    let mut buffer = GBuffer::new(
-        SoaVec3::new(&p[0], &p[1], &p[2]),
-        SoaVec3::new(&n[0], &n[1], &n[2]),
-    );
-    if with_surface {
-        buffer = buffer.with_surface(SoaSurface {
-            ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
-            diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
-            specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
-            shininess: &g.s,
-        });
-    }
-    if with_vis {
-        buffer = buffer.with_visibility(&g.vis);
-    }
+    let sp = Split::new(g);
+    let buffer = sp.gbuffer(g, with_surface, with_vis);
     let (mut r, mut gr, mut b) = (vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]);
     let shaded = phong::shade_gbuffer_with_level(
         level,
@@ -880,8 +904,7 @@ fn the_terms_output_is_each_term_of_the_equation_at_every_level() {
         ambient: Vec3::splat(0.02),
         viewer: Viewer::At(eye),
     };
-    let (p, n) = (split(&g.p), split(&g.n));
-    let (ka, kd, ks) = (split(&g.ka), split(&g.kd), split(&g.ks));
+    let sp = Split::new(&g);
     let coverage: Vec<bool> = (0..len).map(|i| i % 3 != 1).collect();
     for (name, model) in models() {
         for (with_surface, with_vis, with_coverage) in [
@@ -890,21 +913,7 @@ fn the_terms_output_is_each_term_of_the_equation_at_every_level() {
             (true, false, true),
             (false, true, false),
         ] {
-            let mut buffer = GBuffer::new(
-                SoaVec3::new(&p[0], &p[1], &p[2]),
-                SoaVec3::new(&n[0], &n[1], &n[2]),
-            );
-            if with_surface {
-                buffer = buffer.with_surface(SoaSurface {
-                    ambient: SoaVec3::new(&ka[0], &ka[1], &ka[2]),
-                    diffuse: SoaVec3::new(&kd[0], &kd[1], &kd[2]),
-                    specular: SoaVec3::new(&ks[0], &ks[1], &ks[2]),
-                    shininess: &g.s,
-                });
-            }
-            if with_vis {
-                buffer = buffer.with_visibility(&g.vis);
-            }
+            let mut buffer = sp.gbuffer(&g, with_surface, with_vis);
             if with_coverage {
                 buffer = buffer.with_coverage(&coverage);
             }
