@@ -217,23 +217,35 @@ fn run(
     (0..len).map(|i| Vec3::new(r[i], gr[i], b[i])).collect()
 }
 
-/// Every level, with and without each per-point input, against the range of the equivalent
-/// material and scene, and the scalar `shade_surface` against the same range.
-fn check(seed: u64, lights: usize, eye: Vec3) {
+/// The equation tests' inputs from `seed`: `lights` lamps, 203 points around them seen from
+/// `eye`, the base material (with an emission) and the lamps as unshadowed point lights.
+fn setup(seed: u64, lights: usize, eye: Vec3) -> (Vec<Lamp>, Points, Material, Vec<PointLight>) {
     let mut rng = Rng::new(seed);
     let lamps = lamps(&mut rng, lights);
     let g = points(&mut rng, 203, &lamps, eye);
-    let len = g.p.len();
     let base = Material::try_new(Vec3::splat(0.2), Vec3::splat(0.6), Vec3::splat(0.4), 24.0)
         .unwrap()
         .try_with_emission(Vec3::splat(0.01))
         .unwrap();
-    let plain: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
-    let scene = Scene {
-        lights: &plain,
+    let plain = lamps.iter().map(|l| l.light(1.0)).collect();
+    (lamps, g, base, plain)
+}
+
+/// The equation tests' scene: `lights`, a small scene ambient, the viewer at `eye`.
+fn scene_at(lights: &[PointLight], eye: Vec3) -> Scene<'_, PointLight> {
+    Scene {
+        lights,
         ambient: Vec3::splat(0.02),
         viewer: Viewer::At(eye),
-    };
+    }
+}
+
+/// Every level, with and without each per-point input, against the range of the equivalent
+/// material and scene, and the scalar `shade_surface` against the same range.
+fn check(seed: u64, lights: usize, eye: Vec3) {
+    let (lamps, g, base, plain) = setup(seed, lights, eye);
+    let len = g.p.len();
+    let scene = scene_at(&plain, eye);
     for (name, model) in models() {
         for (with_surface, with_vis) in [(true, true), (true, false), (false, true)] {
             // The equivalent material and scene of point i.
@@ -889,21 +901,10 @@ fn run_terms(
 /// a coverage mask leaves the uncovered points' nine values untouched.
 #[test]
 fn the_terms_output_is_each_term_of_the_equation_at_every_level() {
-    let mut rng = Rng::new(0x7e5_0003);
     let eye = Vec3::new(1.0, -2.0, 4.0);
-    let lamps = lamps(&mut rng, 2);
-    let g = points(&mut rng, 203, &lamps, eye);
+    let (lamps, g, base, plain) = setup(0x7e5_0003, 2, eye);
     let len = g.p.len();
-    let base = Material::try_new(Vec3::splat(0.2), Vec3::splat(0.6), Vec3::splat(0.4), 24.0)
-        .unwrap()
-        .try_with_emission(Vec3::splat(0.01))
-        .unwrap();
-    let plain: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
-    let scene = Scene {
-        lights: &plain,
-        ambient: Vec3::splat(0.02),
-        viewer: Viewer::At(eye),
-    };
+    let scene = scene_at(&plain, eye);
     let sp = Split::new(&g);
     let coverage: Vec<bool> = (0..len).map(|i| i % 3 != 1).collect();
     for (name, model) in models() {
