@@ -48,6 +48,15 @@ fn lights() -> [Light; 3] {
     ]
 }
 
+/// Whether `model` evaluates its lobe with `PowStrategy::Auto`.
+fn uses_auto(model: &Model) -> bool {
+    match model {
+        Model::Phong(m) => m.pow == PowStrategy::Auto,
+        Model::BlinnPhong(m) => m.pow == PowStrategy::Auto,
+        _ => false,
+    }
+}
+
 fn models() -> Vec<Model> {
     let mut v = vec![Model::Lambert(Lambert::default())];
     for gate in [SpecularGate::Step, SpecularGate::Cosine, SpecularGate::None] {
@@ -107,8 +116,33 @@ fn shade_is_the_prepared_shader_and_full_visibility_changes_nothing() {
             assert_eq!(shader.shade(p, n), a, "{model:?}");
             assert_eq!(shader.shade_visible(p, n, [1.0; 3]), a);
             assert_eq!(shader.shade_visible(p, n, Unshadowed), a);
-            // The material's own reflectances as a per-point surface: the same computation.
-            assert_eq!(shader.shade_surface(p, n, &Surface::of(&m), [1.0; 3]), a);
+            // The material's own reflectances as a per-point surface: the same computation, but
+            // for `Auto`'s power, which is Poly7 for a point's own exponent and squaring for the
+            // material's whole 24.
+            let t = shader.shade_surface(p, n, &Surface::of(&m), [1.0; 3]);
+            if !uses_auto(&model) {
+                assert_eq!(t, a, "{model:?}");
+                continue;
+            }
+            assert_eq!(
+                (t.ambient, t.diffuse, t.emission),
+                (a.ambient, a.diffuse, a.emission)
+            );
+            // Each light's lobe moves by at most e·max(lobe, ERROR_FLOOR) with e the two
+            // strategies' bounds together; the same products and sums follow (a few roundings,
+            // 4U, relative). The floor's part is at most e·floor times Ks·scale·ΣLs·f < 0.6 ·
+            // 4.2 · 2.6 · 1 < 7 here (Energy's Phong scale (s + 2)/2π at s = 24, the lights'
+            // specular colours, attenuation ≤ 1).
+            let e = PowStrategy::Poly7.max_relative_error()
+                + PowStrategy::Squaring.max_relative_error();
+            let tol =
+                a.specular.abs() * (e + 4.0 * U) + Vec3::splat(7.0 * e * PowStrategy::ERROR_FLOOR);
+            assert!(
+                (t.specular - a.specular).abs().cmple(tol).all(),
+                "{model:?} at {p}, {n}: {} against {}",
+                t.specular,
+                a.specular
+            );
         }
     }
 }

@@ -253,8 +253,9 @@ impl<'a> GBuffer<'a> {
 ///
 /// with `Ka, Kd, Ks, s` the point's surface, `Ke` the material's emission. Each lane of the
 /// kernel has its own shininess: under [`PowStrategy::Auto`](crate::PowStrategy::Auto) (the
-/// default) a whole exponent is squared and a fractional one takes the degree-7 polynomial, lane
-/// by lane; a model with another pow strategy and a per-point surface is shaded point by point.
+/// default) every lane's power is the degree-7 polynomial's, whole exponents included, as
+/// [`Shader::shade_surface`](crate::Shader::shade_surface) computes it; a model with another pow
+/// strategy and a per-point surface is shaded point by point.
 ///
 /// **Domain:** as [`shade_batch`](crate::shade_batch), and as [`GBuffer`] and [`SoaSurface`]
 /// describe. **Returns** the number of points shaded: the shortest of the G-buffer's slices and

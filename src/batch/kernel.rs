@@ -37,7 +37,7 @@ use crate::light::SpotLight;
 use crate::material::Material;
 use crate::math;
 use crate::pow::{
-    EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, auto_split, lobe_pow,
+    EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, auto_split_per_point, lobe_pow,
 };
 use crate::reflection::normalization::Normalization;
 use crate::shade::{Scene, Viewer};
@@ -593,20 +593,15 @@ fn pow<S: Simd, const CALLS: bool>(s: S, plan: PowPlan, flush: f32, x: S::V) -> 
 }
 
 /// A chunk's per-point surface, sanitised as [`Shader::shade_surface`] does: reflectances, and
-/// each lane's specular scale and `Auto` split of its exponent (`auto_split`).
+/// each lane's specular scale and exponent.
 pub(crate) struct SurfaceV<S: Simd> {
     ka: [S::V; 3],
     kd: [S::V; 3],
     ks: [S::V; 3],
     scale: S::V,
-    /// The whole exponent per lane (0 where it is fractional).
-    whole: S::I,
-    /// The fractional exponent per lane (0 where it is whole).
-    frac: S::V,
-    /// Squaring steps the largest whole exponent needs.
-    steps: u32,
-    /// Whether some lane's exponent is fractional.
-    any_frac: bool,
+    /// The lobe's exponent per lane (half the shininess for Blinn-Phong), evaluated by the
+    /// polynomial at every value, as `auto_split_per_point` plans it for one point.
+    exponent: S::V,
 }
 
 impl<S: Simd> SurfaceV<S> {
@@ -615,15 +610,7 @@ impl<S: Simd> SurfaceV<S> {
         let sh = clean(&raw[9]);
         let scale = lane_scales(lm, &sh);
         let half = if lm.lobe == Lobe::Blinn { 0.5 } else { 1.0 };
-        let mut whole = [0i32; W];
-        let mut frac = [0.0f32; W];
-        let mut or = 0u32;
-        for i in 0..W {
-            let (n, f) = auto_split(half * sh[i]);
-            or |= n;
-            whole[i] = n as i32;
-            frac[i] = f;
-        }
+        let exponent = sh.map(|x| auto_split_per_point(half * x).1);
         // A macro, not a closure: a closure may be left out of line, without the level's features.
         macro_rules! v3 {
             ($a:expr) => {
@@ -639,10 +626,7 @@ impl<S: Simd> SurfaceV<S> {
             kd: v3!(3),
             ks: v3!(6),
             scale: s.load(&scale),
-            whole: s.load_i(&whole),
-            frac: s.load(&frac),
-            steps: 32 - or.leading_zeros(),
-            any_frac: frac.iter().any(|&f| f != 0.0),
+            exponent: s.load(&exponent),
         }
     }
 }
@@ -682,39 +666,14 @@ fn lane_scales(lm: &LaneModel, sh: &Lanes) -> Lanes {
     }
 }
 
-/// Bases and partial products below this are set to 0 in [`auto_pow`]: a product of two kept
-/// values is then at least `2⁻¹²⁶`, never subnormal, and a lobe that loses them is below `2⁻⁶³`
-/// (an absolute error far under every tolerance of the batch).
-const LANE_FLUSH: f32 = 1.0 / (1u64 << 63) as f32;
-
-/// `v`, or 0 where `v < LANE_FLUSH`.
-#[inline(always)]
-fn flushed<S: Simd>(s: S, v: S::V) -> S::V {
-    s.keep(s.ge(v, s.splat(LANE_FLUSH)), v)
-}
-
-/// `PowStrategy::Auto`'s `x^e` with an exponent per lane (`surface.whole`, `surface.frac`):
-/// squaring where it is whole, by the ladder of `pow_u32_fixed` (the same products in the same
-/// order), the degree-7 polynomial elsewhere; 0 for `x ≤ 0`. The ladder runs only over the bits
-/// some lane has, and the polynomial only when some lane needs it: a chunk of fractional
-/// shininesses squares nothing.
+/// `PowStrategy::Auto`'s `x^e` with an exponent per lane (`surface.exponent`): the degree-7
+/// polynomial, as for one point with its own exponent (`auto_split_per_point`, bit for bit); 1
+/// where the exponent is 0, and 0 for `x ≤ 0`.
 #[inline(always)]
 fn auto_pow<S: Simd>(s: S, x: S::V, sf: &SurfaceV<S>) -> S::V {
-    let mut acc = s.splat(1.0);
-    let mut base = flushed(s, x);
-    let mut rem = sf.whole;
-    for _ in 0..sf.steps {
-        acc = s.select(s.odd(rem), flushed(s, s.mul(acc, base)), acc);
-        rem = s.shr1(rem);
-        base = s.select(s.nonzero(rem), flushed(s, s.mul(base, base)), base);
-    }
     let pos = s.gt(x, s.splat(0.0));
-    let r = if sf.any_frac {
-        let poly = poly_pow(s, Poly::P7, s.select(pos, x, s.splat(1.0)), sf.frac);
-        s.select(s.gt(sf.frac, s.splat(0.0)), poly, acc)
-    } else {
-        acc
-    };
+    let poly = poly_pow(s, Poly::P7, s.select(pos, x, s.splat(1.0)), sf.exponent);
+    let r = s.select(s.gt(sf.exponent, s.splat(0.0)), poly, s.splat(1.0));
     s.keep(pos, r)
 }
 

@@ -20,12 +20,12 @@
 //! is NaN (x86's `minps`/`maxps`: `a < b ? a : b`), as [`math::min_or`](crate::math) does for
 //! one value, so a NaN can be mapped to a bound by its argument order.
 
-use super::kernel::{Lanes, W};
+use super::kernel::Lanes;
 
 /// Sixteen `f32` lanes and the operations the batch kernel needs on them (see the module docs).
 ///
-/// `I` is sixteen `i32` lanes for the bit manipulations of `log2`/`exp2` and the per-lane
-/// exponent ladder; `M` a sixteen-lane mask.
+/// `I` is sixteen `i32` lanes for the bit manipulations of `log2`/`exp2`; `M` a sixteen-lane
+/// mask.
 pub(crate) trait Simd: Copy {
     /// Sixteen `f32` lanes.
     type V: Copy;
@@ -84,8 +84,6 @@ pub(crate) trait Simd: Copy {
     fn bits_to_f32(self, i: Self::I) -> Self::V;
     /// Every lane `x`.
     fn splat_i(self, x: i32) -> Self::I;
-    /// The lanes of `a`.
-    fn load_i(self, a: &[i32; W]) -> Self::I;
     /// `a + b`, wrapping.
     fn add_i(self, a: Self::I, b: Self::I) -> Self::I;
     /// `a − b`, wrapping.
@@ -94,12 +92,6 @@ pub(crate) trait Simd: Copy {
     fn shl23(self, a: Self::I) -> Self::I;
     /// `a >> 23`, arithmetic.
     fn sar23(self, a: Self::I) -> Self::I;
-    /// `a >> 1`, logical.
-    fn shr1(self, a: Self::I) -> Self::I;
-    /// Lanes whose lowest bit is set.
-    fn odd(self, a: Self::I) -> Self::M;
-    /// Lanes that are not 0.
-    fn nonzero(self, a: Self::I) -> Self::M;
     /// Each lane converted to `f32` (exact below `2²⁴`).
     fn to_f32(self, a: Self::I) -> Self::V;
 }
@@ -302,10 +294,6 @@ macro_rules! simd_by_parts {
                 [$({ let _ = $j; $native::splat_i(x) }),+]
             }
             #[inline(always)]
-            fn load_i(self, a: &[i32; $crate::batch::kernel::W]) -> Self::I {
-                bytemuck::must_cast(*a)
-            }
-            #[inline(always)]
             fn add_i(self, a: Self::I, b: Self::I) -> Self::I {
                 [$($native::add_i(a[$j], b[$j])),+]
             }
@@ -320,18 +308,6 @@ macro_rules! simd_by_parts {
             #[inline(always)]
             fn sar23(self, a: Self::I) -> Self::I {
                 [$($native::sar23(a[$j])),+]
-            }
-            #[inline(always)]
-            fn shr1(self, a: Self::I) -> Self::I {
-                [$($native::shr1(a[$j])),+]
-            }
-            #[inline(always)]
-            fn odd(self, a: Self::I) -> Self::M {
-                [$($native::odd(a[$j])),+]
-            }
-            #[inline(always)]
-            fn nonzero(self, a: Self::I) -> Self::M {
-                [$($native::nonzero(a[$j])),+]
             }
             #[inline(always)]
             fn to_f32(self, a: Self::I) -> Self::V {

@@ -127,7 +127,9 @@ pub enum PowStrategy {
     /// per exponent: [`PowStrategy::cheapest_for_8bit`], squaring for a whole exponent up to 1024
     /// and [`Poly7`](Self::Poly7) otherwise. The same everywhere (batch kernels, [`Shader`],
     /// [`shade`]), bit for bit; no `powf` call, so a loop over points stays vectorisable. The
-    /// error is the chosen strategy's.
+    /// error is the chosen strategy's. An exponent given per point
+    /// ([`Shader::shade_surface`](crate::Shader::shade_surface), a G-buffer's shininess) always
+    /// takes `Poly7`: a choice per point would run both forms at every point of a vectorised loop.
     ///
     /// [`Shader`]: crate::Shader
     /// [`shade`]: crate::shade()
@@ -472,16 +474,19 @@ pub(crate) fn auto_pow(x: f32, n: u32, f: f32) -> f32 {
     auto_pow_by(pow_u32, x, n, f)
 }
 
-/// [`auto_pow`] for code the compiler vectorises across points: the fixed-length ladder
-/// [`pow_u32_fixed`], and both forms computed before one is selected by `f`. The same result, bit
-/// for bit.
+/// [`auto_pow`] for code the compiler vectorises across points. The same result, bit for bit.
 ///
-/// `SHARED`: `f` is the same at every point (one material for the whole loop). The select then
-/// keeps a scalar condition in the vectorised loop, which the code generator turns into a
-/// branch; with the polynomial ending in a division ([`poly_pow_div`]) and its constants `k`
-/// read from a prepared shader ([`PolyConsts`]), it moves the polynomial into that branch, and a
-/// whole exponent skips it. Otherwise (a shininess per point) both forms run for every point,
-/// and the polynomial ends in the cheaper product.
+/// `SHARED`: `f` is the same at every point (one material for the whole loop). Both forms are
+/// computed, the fixed-length ladder [`pow_u32_fixed`] and the polynomial, before one is selected
+/// by `f`. The select keeps a scalar condition in the vectorised loop, which the code generator
+/// turns into a branch; with the polynomial ending in a division ([`poly_pow_div`]) and its
+/// constants `k` read from a prepared shader ([`PolyConsts`]), it moves the polynomial into that
+/// branch, and a whole exponent skips it.
+///
+/// Otherwise the exponent is a point's own, and its plan never squares (`n = 0`, see
+/// `auto_split_per_point`): the polynomial alone, ending in the cheaper product. Running the
+/// ladder beside it for every point, as a per-lane choice would, cost a fifth of the
+/// instructions of a textured fragment's shading.
 #[inline(always)]
 pub(crate) fn auto_pow_fixed<const SHARED: bool>(
     x: f32,
@@ -489,12 +494,16 @@ pub(crate) fn auto_pow_fixed<const SHARED: bool>(
     f: f32,
     k: &PolyConsts<7, 5>,
 ) -> f32 {
+    if !SHARED {
+        debug_assert_eq!(n, 0, "a per-point exponent's plan never squares");
+        return if f != 0.0 {
+            poly_pow_with(x, f, k)
+        } else {
+            1.0
+        };
+    }
     let ladder = pow_u32_fixed(x, n);
-    let poly = if SHARED {
-        poly_pow_div(x, f, k)
-    } else {
-        poly_pow_with(x, f, k)
-    };
+    let poly = poly_pow_div(x, f, k);
     if f != 0.0 { poly } else { ladder }
 }
 
@@ -524,6 +533,17 @@ pub(crate) fn auto_split(s: f32) -> (u32, f32) {
     } else {
         (0, s)
     }
+}
+
+/// `Auto`'s `(n, f)` for an exponent `e ≥ 0` that is a point's own (a shininess per texel):
+/// `(0, e)`, the polynomial at every exponent, whole ones included. With one exponent for many
+/// points the choice between squaring and the polynomial is made once ([`auto_split`]); with one
+/// per point it would be made at every point, and where the compiler vectorises the caller's
+/// loop both forms would run for every point. The polynomial's error at a whole exponent is its
+/// error anywhere else (the `Poly7` rows of the pow-strategy table in docs/performance.md).
+#[inline(always)]
+pub(crate) fn auto_split_per_point(e: f32) -> (u32, f32) {
+    (0, math::clamp_or_lo(e, 0.0, math::MAX))
 }
 
 /// `Σ c[k] t^k` by Estrin's scheme (`N ≤ 8`).
@@ -765,10 +785,23 @@ mod tests {
                 for got in [
                     auto_pow(x, n, f),
                     auto_pow_fixed::<true>(x, n, f, &P7_CONSTS),
-                    auto_pow_fixed::<false>(x, n, f, &P7_CONSTS),
                 ] {
                     assert_eq!(got.to_bits(), want.to_bits(), "x = {x}, s = {s}");
                 }
+                // A point's own exponent: Poly7 at every exponent, whole ones included (1 at 0).
+                let (pn, pf) = auto_split_per_point(s);
+                let want = if s == 0.0 {
+                    1.0
+                } else {
+                    PowStrategy::Poly7.plan(s).eval(x)
+                };
+                let got = auto_pow_fixed::<false>(x, pn, pf, &P7_CONSTS);
+                assert_eq!(got.to_bits(), want.to_bits(), "per point: x = {x}, s = {s}");
+                assert_eq!(
+                    auto_pow(x, pn, pf).to_bits(),
+                    want.to_bits(),
+                    "x = {x}, s = {s}"
+                );
             }
         }
     }

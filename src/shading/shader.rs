@@ -10,7 +10,9 @@ use crate::math;
 use crate::model::ReflectionModel;
 use crate::normalize::{direction_between, normalize_full, sub_saturating};
 use crate::normalize_or_zero;
-use crate::pow::{P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_split};
+use crate::pow::{
+    P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_split, auto_split_per_point,
+};
 use crate::resolved_model::{Lobe, ResolvedModel, SpecularPlan};
 use crate::shade::{Scene, Viewer};
 use crate::surface::Surface;
@@ -105,6 +107,11 @@ struct OneLight {
     ambient: Vec3,
     diffuse: Vec3,
     specular: Vec3,
+    /// Whether the light's sums (`Ia + f·La`, `f·vis·wd·Ld`, `f·vis·ws·Ls`) stay below
+    /// `f32::MAX / 4` at every point for every per-point surface: the light's bounds allow it and
+    /// the model's specular scale is 1 at any shininess (no normalisation). A per-point surface
+    /// then saturates its products only, not the sums, which cannot reach `f32::MAX`.
+    sums_below: bool,
 }
 
 /// A surface with its specular constants, sanitised, ready for the per-light loop.
@@ -179,6 +186,13 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     ambient: light.colors().ambient(),
                     diffuse: light.colors().diffuse(),
                     specular: light.colors().specular(),
+                    sums_below: resolved.is_some_and(|r| {
+                        let quarter = 0.25 * math::MAX;
+                        !r.normalization.is_normalized()
+                            && bounds[0].max_element() < quarter
+                            && (r.diffuse(1.0) * bounds[1]).max_element() < quarter
+                            && bounds[2].max_element() < quarter
+                    }),
                 }),
                 _ => None,
             },
@@ -187,7 +201,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 kd: Vec3::ZERO,
                 ks: Vec3::ZERO,
                 s: 0.0,
-                specular: plan_for(None, 0.0),
+                specular: plan_for(None, 0.0, true),
                 safe: false,
             },
         };
@@ -211,7 +225,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// misjudge. Models from outside the crate are never `safe`.
     #[inline(always)]
     fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32, shared: bool) -> Prepared {
-        let specular = plan_for(self.resolved, s);
+        let specular = plan_for(self.resolved, s, shared);
         // The one-light path with a per-point surface saturates either way (see `one_light`): the
         // test would cost more at every point than the `min`s it could skip.
         let safe = (shared || self.one.is_none())
@@ -317,9 +331,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// shininess (texture maps), and per-light visibility. The material's emission is kept.
     ///
     /// Nothing is validated: release builds sanitise the surface (see [`Surface`]) and debug builds
-    /// assert it. The pow plan for the point's shininess is chosen here, per point: one compare for
-    /// [`PowStrategy::Auto`](crate::PowStrategy::Auto) (squaring for a whole exponent, a
-    /// polynomial otherwise).
+    /// assert it. The pow plan for the point's shininess is chosen here, per point. Under
+    /// [`PowStrategy::Auto`](crate::PowStrategy::Auto) a point's own exponent always takes the
+    /// degree-7 polynomial (`Poly7`), whole exponents included: choosing squaring for whole ones
+    /// would run both forms at every point of a vectorised loop. Its error is `Poly7`'s (8-bit
+    /// output as exact as `powf`); a [`Surface`] equal to the material with a fractional
+    /// shininess gives exactly [`shade_visible`](Self::shade_visible)'s terms.
     ///
     /// ```
     /// use glam::{Vec3, Vec3A};
@@ -559,7 +576,8 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         }
         // Otherwise (a per-point surface, whose test would cost more at every point than the
         // `min`s, or sums that may reach f32::MAX) saturated; `min` leaves every value below
-        // f32::MAX as it is, so the bits are the light loop's either way. Per component with the machine's `min` (`Vec3::min` would add IEEE minNum's NaN test).
+        // f32::MAX as it is, so the bits are the light loop's either way. Per component with the
+        // machine's `min` (`Vec3::min` would add IEEE minNum's NaN test).
         let min = |v: Vec3| {
             Vec3::new(
                 math::min_or(v.x, math::MAX),
@@ -567,6 +585,18 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 math::min_or(v.z, math::MAX),
             )
         };
+        if !SHARED && one.sums_below {
+            // A per-point surface under a light whose sums stay below f32::MAX / 4 (see
+            // `OneLight::sums_below`): the `min`s on the sums would change nothing, and only the
+            // products with the surface's reflectances (each up to f32::MAX) can overflow. The
+            // condition is the same at every point: in a vectorised loop this is a branch.
+            return Terms {
+                ambient: min(ka * ambient),
+                diffuse: min(kd * (one.diffuse * (fv * wd))),
+                specular: min(ks * (one.specular * (fv * ws))),
+                emission: self.emission,
+            };
+        }
         Terms {
             ambient: min(ka * min(ambient)),
             diffuse: min(kd * min(diffuse)),
@@ -766,12 +796,13 @@ fn n_dot_h_squared(n: Vec3, l: Vec3, v: Vec3) -> f32 {
 /// The specular constants for shininess `s`: from the resolved model, or unused (custom models
 /// evaluate their own lobes).
 #[inline(always)]
-fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
+fn plan_for(resolved: Option<ResolvedModel>, s: f32, shared: bool) -> SpecularPlan {
     match resolved {
-        // `Auto`: squaring for a whole exponent, the degree-7 polynomial otherwise (its meaning
-        // everywhere in the crate), as one `Split` plan whose evaluation has no branch on the
-        // shininess. Decided inline, without `at_shininess`'s general plan: `shade_surface` runs
-        // it per point.
+        // `Auto`: for one material's exponent (`shared`), squaring for a whole exponent and the
+        // degree-7 polynomial otherwise (its meaning everywhere in the crate); for a point's own
+        // exponent, the polynomial (see `auto_split_per_point`). One `Split` plan whose
+        // evaluation has no branch on the shininess, decided inline, without `at_shininess`'s
+        // general plan: `shade_surface` runs it per point.
         Some(r) if r.pow == PowStrategy::Auto => {
             let s = math::clamp_or_lo(s, 0.0, math::MAX);
             let (scale, e) = match r.lobe {
@@ -779,7 +810,11 @@ fn plan_for(resolved: Option<ResolvedModel>, s: f32) -> SpecularPlan {
                 Lobe::Phong => (r.normalization.phong_factor(s), s),
                 Lobe::Blinn => (r.normalization.blinn_factor(s), 0.5 * s),
             };
-            let (n, frac) = auto_split(e);
+            let (n, frac) = if shared {
+                auto_split(e)
+            } else {
+                auto_split_per_point(e)
+            };
             SpecularPlan {
                 scale,
                 plan: PowPlan::Split {

@@ -7,11 +7,10 @@
 
 use core::arch::x86_64::{
     __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
-    _mm256_and_si256, _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps,
-    _mm256_cmpeq_epi32, _mm256_cvtepi32_ps, _mm256_div_ps, _mm256_fmadd_ps, _mm256_fmsub_ps,
-    _mm256_fnmadd_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
-    _mm256_rsqrt_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_si256, _mm256_slli_epi32,
-    _mm256_srai_epi32, _mm256_srli_epi32, _mm256_sub_epi32, _mm256_sub_ps,
+    _mm256_blendv_ps, _mm256_cmp_ps, _mm256_cvtepi32_ps, _mm256_div_ps, _mm256_fmadd_ps,
+    _mm256_fmsub_ps, _mm256_fnmadd_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
+    _mm256_mul_ps, _mm256_rsqrt_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32,
+    _mm256_srai_epi32, _mm256_sub_epi32, _mm256_sub_ps,
 };
 
 use crate::batch::Level;
@@ -127,24 +126,6 @@ mod native {
     #[inline(always)]
     pub(super) fn sar23(a: __m256i) -> __m256i {
         unsafe { _mm256_srai_epi32::<23>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn shr1(a: __m256i) -> __m256i {
-        unsafe { _mm256_srli_epi32::<1>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn odd(a: __m256i) -> __m256 {
-        unsafe {
-            let one = _mm256_set1_epi32(1);
-            _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(a, one), one))
-        }
-    }
-    #[inline(always)]
-    pub(super) fn nonzero(a: __m256i) -> __m256 {
-        unsafe {
-            let zero = _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, _mm256_setzero_si256()));
-            _mm256_andnot_ps(zero, _mm256_castsi256_ps(_mm256_set1_epi32(-1)))
-        }
     }
     #[inline(always)]
     pub(super) fn to_f32(a: __m256i) -> __m256 {

@@ -8,11 +8,10 @@
 
 use core::arch::x86_64::{
     __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _mm512_add_epi32, _mm512_add_ps,
-    _mm512_cmp_ps_mask, _mm512_cmpneq_epi32_mask, _mm512_cvtepi32_ps, _mm512_div_ps,
-    _mm512_fmadd_ps, _mm512_fmsub_ps, _mm512_fnmadd_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_ps,
-    _mm512_max_ps, _mm512_min_ps, _mm512_mul_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32,
-    _mm512_set1_ps, _mm512_setzero_si512, _mm512_slli_epi32, _mm512_srai_epi32, _mm512_srli_epi32,
-    _mm512_sub_epi32, _mm512_sub_ps, _mm512_test_epi32_mask,
+    _mm512_cmp_ps_mask, _mm512_cvtepi32_ps, _mm512_div_ps, _mm512_fmadd_ps, _mm512_fmsub_ps,
+    _mm512_fnmadd_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_ps, _mm512_max_ps, _mm512_min_ps,
+    _mm512_mul_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32, _mm512_set1_ps, _mm512_slli_epi32,
+    _mm512_srai_epi32, _mm512_sub_epi32, _mm512_sub_ps,
 };
 
 use crate::batch::Level;
@@ -129,18 +128,6 @@ mod native {
     #[inline(always)]
     pub(super) fn sar23(a: __m512i) -> __m512i {
         unsafe { _mm512_srai_epi32::<23>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn shr1(a: __m512i) -> __m512i {
-        unsafe { _mm512_srli_epi32::<1>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn odd(a: __m512i) -> __mmask16 {
-        unsafe { _mm512_test_epi32_mask(a, _mm512_set1_epi32(1)) }
-    }
-    #[inline(always)]
-    pub(super) fn nonzero(a: __m512i) -> __mmask16 {
-        unsafe { _mm512_cmpneq_epi32_mask(a, _mm512_setzero_si512()) }
     }
     #[inline(always)]
     pub(super) fn to_f32(a: __m512i) -> __m512 {

@@ -13,8 +13,7 @@
 use core::arch::aarch64::{
     float32x4_t, int32x4_t, uint32x4_t, vaddq_f32, vaddq_s32, vaddvq_u32, vandq_u32, vbslq_f32,
     vcgtq_f32, vcleq_f32, vcltq_f32, vcvtq_f32_s32, vdivq_f32, vdupq_n_f32, vdupq_n_s32, vfmaq_f32,
-    vmulq_f32, vreinterpretq_s32_u32, vreinterpretq_u32_s32, vrsqrteq_f32, vrsqrtsq_f32,
-    vshlq_n_s32, vshrq_n_s32, vshrq_n_u32, vsubq_f32, vsubq_s32, vtstq_s32,
+    vmulq_f32, vrsqrteq_f32, vrsqrtsq_f32, vshlq_n_s32, vshrq_n_s32, vsubq_f32, vsubq_s32,
 };
 
 /// The `Neon` level's token (every aarch64 build with NEON runs it).
@@ -131,18 +130,6 @@ mod native {
     #[inline(always)]
     pub(super) fn sar23(a: int32x4_t) -> int32x4_t {
         unsafe { vshrq_n_s32::<23>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn shr1(a: int32x4_t) -> int32x4_t {
-        unsafe { vreinterpretq_s32_u32(vshrq_n_u32::<1>(vreinterpretq_u32_s32(a))) }
-    }
-    #[inline(always)]
-    pub(super) fn odd(a: int32x4_t) -> uint32x4_t {
-        unsafe { vtstq_s32(a, vdupq_n_s32(1)) }
-    }
-    #[inline(always)]
-    pub(super) fn nonzero(a: int32x4_t) -> uint32x4_t {
-        unsafe { vtstq_s32(a, a) }
     }
     #[inline(always)]
     pub(super) fn to_f32(a: int32x4_t) -> float32x4_t {

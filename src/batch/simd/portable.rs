@@ -133,10 +133,6 @@ impl Simd for Portable {
         [x; W]
     }
     #[inline(always)]
-    fn load_i(self, a: &[i32; W]) -> [i32; W] {
-        *a
-    }
-    #[inline(always)]
     fn add_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
         each!(|i| a[i].wrapping_add(b[i]))
     }
@@ -151,18 +147,6 @@ impl Simd for Portable {
     #[inline(always)]
     fn sar23(self, a: [i32; W]) -> [i32; W] {
         each!(|i| a[i] >> 23)
-    }
-    #[inline(always)]
-    fn shr1(self, a: [i32; W]) -> [i32; W] {
-        each!(|i| ((a[i] as u32) >> 1) as i32)
-    }
-    #[inline(always)]
-    fn odd(self, a: [i32; W]) -> [u32; W] {
-        each!(|i| mask(a[i] & 1 == 1))
-    }
-    #[inline(always)]
-    fn nonzero(self, a: [i32; W]) -> [u32; W] {
-        each!(|i| mask(a[i] != 0))
     }
     #[inline(always)]
     fn to_f32(self, a: [i32; W]) -> Lanes {

@@ -9,11 +9,10 @@
 )]
 
 use core::arch::x86_64::{
-    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
-    _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_div_ps,
-    _mm_max_ps, _mm_min_ps, _mm_movemask_ps, _mm_mul_ps, _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32,
-    _mm_set1_ps, _mm_setzero_si128, _mm_slli_epi32, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32,
-    _mm_sub_ps, _mm_xor_ps,
+    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_andnot_ps, _mm_cmple_ps,
+    _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_div_ps, _mm_max_ps, _mm_min_ps, _mm_movemask_ps, _mm_mul_ps,
+    _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32, _mm_set1_ps, _mm_slli_epi32, _mm_srai_epi32,
+    _mm_sub_epi32, _mm_sub_ps,
 };
 
 /// The `Sse2` level's token (every x86_64 CPU runs it).
@@ -117,24 +116,6 @@ mod native {
     #[inline(always)]
     pub(super) fn sar23(a: __m128i) -> __m128i {
         unsafe { _mm_srai_epi32::<23>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn shr1(a: __m128i) -> __m128i {
-        unsafe { _mm_srli_epi32::<1>(a) }
-    }
-    #[inline(always)]
-    pub(super) fn odd(a: __m128i) -> __m128 {
-        unsafe {
-            let one = _mm_set1_epi32(1);
-            _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(a, one), one))
-        }
-    }
-    #[inline(always)]
-    pub(super) fn nonzero(a: __m128i) -> __m128 {
-        unsafe {
-            let zero = _mm_castsi128_ps(_mm_cmpeq_epi32(a, _mm_setzero_si128()));
-            _mm_xor_ps(zero, _mm_castsi128_ps(_mm_set1_epi32(-1)))
-        }
     }
     #[inline(always)]
     pub(super) fn to_f32(a: __m128i) -> __m128 {
