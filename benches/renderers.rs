@@ -64,9 +64,9 @@ fn phong_light(l: &HandLight) -> PointLight {
 fn unit(rng: &mut Rng) -> Vec3 {
     loop {
         let v = Vec3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
+            rng.range_f32(-1.0, 1.0),
+            rng.range_f32(-1.0, 1.0),
+            rng.range_f32(-1.0, 1.0),
         );
         let l = v.length_squared();
         if l > 1e-4 && l <= 1.0 {
@@ -76,7 +76,11 @@ fn unit(rng: &mut Rng) -> Vec3 {
 }
 
 fn point(rng: &mut Rng, r: f32) -> Vec3 {
-    Vec3::new(rng.range(-r, r), rng.range(-r, r), rng.range(-r, r))
+    Vec3::new(
+        rng.range_f32(-r, r),
+        rng.range_f32(-r, r),
+        rng.range_f32(-r, r),
+    )
 }
 
 /// `|a − b| ≤ 1e-4 + 1e-4·|b|` per channel: `f32` rounding in different operation orders on
@@ -103,7 +107,7 @@ struct Hits {
 }
 
 fn hits(n: usize, seed: u64) -> Hits {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut h = Hits {
         position: Vec::with_capacity(n),
         normal: Vec::with_capacity(n),
@@ -117,7 +121,7 @@ fn hits(n: usize, seed: u64) -> Hits {
         // A shadow ray either reaches the light or not: about a third of the lights are blocked.
         let mut vis = [1.0; 3];
         for v in &mut vis {
-            if rng.next_f32() < 0.33 {
+            if rng.unit_f32() < 0.33 {
                 *v = 0.0;
             }
         }
@@ -268,7 +272,7 @@ impl Fragments {
 }
 
 fn fragments(n: usize, seed: u64) -> Fragments {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut f = Fragments {
         position: Vec::with_capacity(n),
         normal: Vec::with_capacity(n),
@@ -281,15 +285,15 @@ fn fragments(n: usize, seed: u64) -> Fragments {
         f.position.push(point(&mut rng, 2.0));
         f.normal.push(unit(&mut rng));
         f.albedo
-            .push(Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()));
-        f.specular_strength.push(rng.next_f32());
-        f.shininess.push(rng.range(2.0, 128.0));
+            .push(Vec3::new(rng.unit_f32(), rng.unit_f32(), rng.unit_f32()));
+        f.specular_strength.push(rng.unit_f32());
+        f.shininess.push(rng.range_f32(2.0, 128.0));
         // A filtered shadow map: mostly lit or mostly shadowed, soft at the edges.
-        let s = rng.next_f32();
+        let s = rng.unit_f32();
         f.shadow.push(if s < 0.3 {
             1.0
         } else if s < 0.4 {
-            rng.next_f32()
+            rng.unit_f32()
         } else {
             0.0
         });

@@ -558,9 +558,9 @@ fn parallel_1m(c: &mut Criterion) {
 /// computed through `srgb_encode` (`powf`) and `quantize_u8`, over 4096 shaded colours.
 fn srgb8_4096(c: &mut Criterion) {
     let n = 4096;
-    let mut rng = bench_scene::Rng(0x5eb8);
+    let mut rng = bench_scene::Rng::new(0x5eb8);
     let colours: Vec<Vec3> = (0..n)
-        .map(|_| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()))
+        .map(|_| Vec3::new(rng.unit_f32(), rng.unit_f32(), rng.unit_f32()))
         .collect();
     let mut out = vec![[0u8; 3]; n];
     let pipeline = |c: Vec3| [c.x, c.y, c.z].map(|x| phong::quantize_u8(phong::srgb_encode(x)));
@@ -909,13 +909,13 @@ fn falloff_4096(c: &mut Criterion) {
 fn tiled_64_lights(c: &mut Criterion) {
     let (width, height) = (256usize, 128usize);
     let n = width * height;
-    let mut rng = bench_scene::Rng(0x7113);
+    let mut rng = bench_scene::Rng::new(0x7113);
     let (mut p, mut nn) = ([vec![], vec![], vec![]], [vec![], vec![], vec![]]);
     for y in 0..height {
         for x in 0..width {
             let (fx, fy) = (x as f32 * 0.5, y as f32 * 0.5);
             let q = Vec3::new(fx, fy, 0.2 * (fx * 1.3).sin() * (fy * 0.7).cos());
-            let nq = Vec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 1.0).normalize();
+            let nq = Vec3::new(rng.range_f32(-0.3, 0.3), rng.range_f32(-0.3, 0.3), 1.0).normalize();
             for k in 0..3 {
                 p[k].push(q[k]);
                 nn[k].push(nq[k]);
@@ -925,7 +925,7 @@ fn tiled_64_lights(c: &mut Criterion) {
     let lights: Vec<PointLight> = (0..64)
         .map(|_| {
             PointLight::try_new(
-                Vec3::new(rng.range(0.0, 128.0), rng.range(0.0, 64.0), 2.0),
+                Vec3::new(rng.range_f32(0.0, 128.0), rng.range_f32(0.0, 64.0), 2.0),
                 Attenuation::try_polynomial(1.0, 0.7, 1.8).unwrap(),
                 LightColors::try_new(Vec3::splat(0.01), Vec3::splat(0.5), Vec3::splat(0.5))
                     .unwrap(),

@@ -79,8 +79,8 @@ fn reference_surface(kind: Kind, k: [DVec3; 3], s: f64, vis: f64, p: Vec3, n: Ve
 fn gbuffer_accuracy(p: &[Vec3], nn: &[Vec3], soa: &[Vec<f32>; 6]) -> Accuracy {
     let n = p.len();
     // The benches' generator, with its own seed.
-    let mut rng = Rng(0x6b75_6666_6572_0001);
-    let mut next = || rng.next_f32();
+    let mut rng = Rng::new(0x6b75_6666_6572_0001);
+    let mut next = || rng.unit_f32();
     let texel: [Vec<f32>; 3] = std::array::from_fn(|_| (0..n).map(|_| next()).collect());
     let strength: Vec<f32> = (0..n).map(|_| next()).collect();
     let shininess: Vec<f32> = (0..n).map(|_| 2.0 + 126.0 * next()).collect();

@@ -14,38 +14,27 @@ pub(crate) const KA: Vec3 = Vec3::new(1.0, 0.5, 0.31);
 pub(crate) const KD: Vec3 = Vec3::new(1.0, 0.5, 0.31);
 pub(crate) const KS: Vec3 = Vec3::splat(0.5);
 
-/// splitmix64: a small deterministic generator, so every run shades the same points.
-pub(crate) struct Rng(pub u64);
-impl Rng {
-    pub(crate) fn next_f32(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 40) as f32 / (1u64 << 24) as f32
-    }
-    pub(crate) fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next_f32()
-    }
-}
+// The tests' seeded generator (SplitMix64), so the crate has one.
+#[path = "../../tests/support/rng.rs"]
+mod rng;
+pub(crate) use rng::Rng;
 
 /// `n` random positions in a 4-unit box around the origin and random unit normals.
 pub(crate) fn points(n: usize, seed: u64) -> (Vec<Vec3>, Vec<Vec3>) {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let mut p = Vec::with_capacity(n);
     let mut nn = Vec::with_capacity(n);
     for _ in 0..n {
         p.push(Vec3::new(
-            rng.range(-2.0, 2.0),
-            rng.range(-2.0, 2.0),
-            rng.range(-2.0, 2.0),
+            rng.range_f32(-2.0, 2.0),
+            rng.range_f32(-2.0, 2.0),
+            rng.range_f32(-2.0, 2.0),
         ));
         let v = loop {
             let v = Vec3::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
+                rng.range_f32(-1.0, 1.0),
+                rng.range_f32(-1.0, 1.0),
+                rng.range_f32(-1.0, 1.0),
             );
             let l = v.length_squared();
             if l > 1e-4 && l <= 1.0 {
