@@ -113,17 +113,19 @@ pub(crate) trait Kernels: Copy {
 /// the G-buffer's instances). With a feature list the kernel is compiled inside
 /// `#[target_feature]`, and `run` calls it in an `unsafe` block whose proof is the token: it
 /// exists only where the CPU has every feature listed. Without one, the kernel is the build's
-/// own instructions, kept out of line.
+/// own instructions, called plainly. Either way the kernel is kept out of line.
 macro_rules! level_entry {
-    ($level:ident, features = $features:literal) => {
-        /// The kernel compiled with this level's target features.
-        #[target_feature(enable = $features)]
+    ($level:ident $(, features = $features:literal)?) => {
+        /// The kernel compiled for this level.
+        $(#[target_feature(enable = $features)])?
+        #[inline(never)]
         fn kernel<const INPUTS: bool>(t: $level, job: $crate::batch::kernel::Job<'_>) -> usize {
             $crate::batch::kernel::run::<$level, INPUTS>(t, job)
         }
 
-        /// The terms kernel compiled with this level's target features.
-        #[target_feature(enable = $features)]
+        /// The terms kernel compiled for this level.
+        $(#[target_feature(enable = $features)])?
+        #[inline(never)]
         fn kernel_terms(
             t: $level,
             job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
@@ -134,58 +136,29 @@ macro_rules! level_entry {
         impl $crate::batch::simd::Kernels for $level {
             fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
                 let inputs = $crate::batch::kernel::has_inputs(job.inputs);
-                // SAFETY: a token of this level exists only where the CPU has every feature
-                // `kernel` enables (its constructor checks them).
-                unsafe {
-                    if inputs {
-                        kernel::<true>(self, job)
-                    } else {
-                        kernel::<false>(self, job)
-                    }
-                }
-            }
-
-            fn run_terms(
-                self,
-                job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
-            ) -> usize {
-                // SAFETY: as in `run`.
-                unsafe { kernel_terms(self, job) }
-            }
-        }
-    };
-    ($level:ident) => {
-        /// The kernel at this level, out of line.
-        #[inline(never)]
-        fn kernel<const INPUTS: bool>(t: $level, job: $crate::batch::kernel::Job<'_>) -> usize {
-            $crate::batch::kernel::run::<$level, INPUTS>(t, job)
-        }
-
-        /// The terms kernel at this level, out of line.
-        #[inline(never)]
-        fn kernel_terms(
-            t: $level,
-            job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
-        ) -> usize {
-            $crate::batch::kernel::run_terms::<$level>(t, job)
-        }
-
-        impl $crate::batch::simd::Kernels for $level {
-            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
-                if $crate::batch::kernel::has_inputs(job.inputs) {
+                level_entry!(@call $($features)?; if inputs {
                     kernel::<true>(self, job)
                 } else {
                     kernel::<false>(self, job)
-                }
+                })
             }
 
             fn run_terms(
                 self,
                 job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
             ) -> usize {
-                kernel_terms(self, job)
+                level_entry!(@call $($features)?; kernel_terms(self, job))
             }
         }
+    };
+    // A call of the level's kernel: `unsafe` where it is a `#[target_feature]` function.
+    (@call $features:literal; $call:expr) => {
+        // SAFETY: a token of this level exists only where the CPU has every feature the kernel
+        // enables (its constructor checks them), and the call takes the token.
+        unsafe { $call }
+    };
+    (@call; $call:expr) => {
+        $call
     };
 }
 
