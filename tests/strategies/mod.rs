@@ -11,10 +11,11 @@
 use core::f64::consts::PI;
 
 use glam::{DVec3, Mat3, Vec3};
-use phong::{
-    Attenuation, BlinnPhong, Lambert, Model, Normalization, Phong, PowStrategy, SpecularGate,
-};
+use phong::{Attenuation, Model, Normalization, PowStrategy, SpecularGate};
 use proptest::prelude::*;
+
+#[path = "../support/models.rs"]
+mod models;
 
 /// A unit vector, uniform on the sphere (Archimedes: uniform `z` and uniform azimuth).
 pub(crate) fn unit_vec3() -> impl Strategy<Value = Vec3> {
@@ -166,19 +167,8 @@ pub(crate) fn model_of(
     normalization: impl Strategy<Value = Normalization>,
     pow: impl Strategy<Value = PowStrategy>,
 ) -> impl Strategy<Value = Model> {
-    (0u8..3, gate, normalization, pow).prop_map(|(k, gate, normalization, pow)| match k {
-        0 => Model::Lambert(Lambert { normalization }),
-        1 => Model::Phong(Phong {
-            gate,
-            normalization,
-            pow,
-        }),
-        _ => Model::BlinnPhong(BlinnPhong {
-            gate,
-            normalization,
-            pow,
-        }),
-    })
+    (0usize..3, gate, normalization, pow)
+        .prop_map(|(k, gate, normalization, pow)| models::assemble(k, gate, normalization, pow))
 }
 
 /// Any of the three models, with any gate and normalisation, and `Exact` or `Squaring`.

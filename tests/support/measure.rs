@@ -16,6 +16,9 @@ use phong::{
 use crate::reference as r;
 use crate::rng::Rng;
 
+#[path = "models.rs"]
+mod models;
+
 // ---------------------------------------------------------------------------------------------
 // Error statistics
 
@@ -289,19 +292,9 @@ fn random_model(rng: &mut Rng) -> Model {
         Normalization::EnergyExact,
     ][rng.below(3)];
     let pow = [PowStrategy::Exact, PowStrategy::Squaring][rng.below(2)];
-    match rng.below(5) {
-        0 => Model::Lambert(Lambert { normalization }),
-        1 | 2 => Model::Phong(Phong {
-            gate,
-            normalization,
-            pow,
-        }),
-        _ => Model::BlinnPhong(BlinnPhong {
-            gate,
-            normalization,
-            pow,
-        }),
-    }
+    // Lambert, Phong and Blinn-Phong weighted 1 : 2 : 2.
+    let kind = [0, 1, 1, 2, 2][rng.below(5)];
+    models::assemble(kind, gate, normalization, pow)
 }
 
 fn colour(rng: &mut Rng, hi: f64) -> Vec3 {
