@@ -184,6 +184,7 @@ mod prepare;
 mod simd;
 mod sink;
 mod soa;
+mod srgb8_lanes;
 mod tiled;
 
 pub use aos::AosVec3;
@@ -201,7 +202,7 @@ use glam::Vec3;
 
 use crate::material::Material;
 use crate::shade::Scene;
-use sink::Sink;
+use sink::{Pixels8, Sink};
 
 /// Shades every point of a structure-of-arrays batch: `out[i] = shade(…, p[i], n[i]).total()`.
 ///
@@ -300,10 +301,13 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
 /// Shades a batch straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
 /// `[r, g, b] = linear_to_srgb8(shade(…, p[i], n[i]).total())`.
 ///
-/// The points are shaded in chunks of 1024 into a buffer on the stack (12 KiB, no allocation) by the
-/// same kernel as [`shade_batch`], and each chunk is encoded by
-/// [`linear_to_srgb8`](crate::linear_to_srgb8) (a table search, no `powf`) before the next: the
-/// linear colours never leave the cache. Alpha is 255.
+/// The same kernel as [`shade_batch`] encodes each colour in its vector lanes before writing it:
+/// the sRGB curve by the degree-7 polynomials of [`PowStrategy::Poly7`](crate::PowStrategy),
+/// whose level is trusted where the value is further from a level boundary than the polynomial's
+/// measured error (and about one channel in 3000 near a boundary is encoded by
+/// [`linear_to_srgb8`](crate::linear_to_srgb8)'s table instead), so every pixel is exactly
+/// [`linear_to_srgb8`](crate::linear_to_srgb8) of the `f32` colour. No buffer, no allocation.
+/// Alpha is 255.
 ///
 /// **Domain:** as [`shade_batch`]. **Returns** the number of points shaded: the shortest of the
 /// six input slices and `out` (debug builds assert they are equal); entries past it are untouched.
@@ -346,14 +350,7 @@ pub fn shade_batch_rgba8<M: BatchModel, L: BatchLight>(
 ) -> usize {
     let level = Level::detect();
     let shading = Shading::new(level, model, material, scene);
-    chunked(
-        &shading,
-        positions,
-        normals,
-        &kernel::PointInputs::default(),
-        out,
-        rgba,
-    )
+    pixels(&shading, positions, normals, Pixels8::Rgba(out))
 }
 
 /// Shades a batch straight into a `0x00RRGGBB` frame (the `u32` pixels that minifb and
@@ -391,26 +388,8 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
     out: &mut [u32],
 ) -> usize {
     let level = Level::detect();
-    chunked(
-        &Shading::new(level, model, material, scene),
-        positions,
-        normals,
-        &kernel::PointInputs::default(),
-        out,
-        xrgb,
-    )
-}
-
-/// An RGBA pixel with alpha 255.
-#[inline(always)]
-fn rgba([r, g, b]: [u8; 3]) -> [u8; 4] {
-    [r, g, b, 255]
-}
-
-/// A `0x00RRGGBB` pixel (what minifb and softbuffer take).
-#[inline(always)]
-fn xrgb([r, g, b]: [u8; 3]) -> u32 {
-    u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b)
+    let shading = Shading::new(level, model, material, scene);
+    pixels(&shading, positions, normals, Pixels8::Xrgb(out))
 }
 
 /// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: the same pixels as
@@ -442,14 +421,8 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
     if !level.is_supported() {
         return Err(UnsupportedLevel(level));
     }
-    Ok(chunked(
-        &Shading::new(level, model, material, scene),
-        positions,
-        normals,
-        &kernel::PointInputs::default(),
-        out,
-        rgba,
-    ))
+    let shading = Shading::new(level, model, material, scene);
+    Ok(pixels(&shading, positions, normals, Pixels8::Rgba(out)))
 }
 
 /// Shades array-of-structs input, the layout a G-buffer or a mesh keeps: `out[i] = shade(…,
@@ -491,14 +464,13 @@ pub fn shade_batch_aos<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3>(
     normals: &[N],
     out: &mut [Vec3],
 ) -> usize {
-    let level = Level::detect();
-    chunked_aos(
-        &Shading::new(level, model, material, scene),
-        positions,
-        normals,
-        out,
-        |c| c,
-    )
+    let shading = Shading::new(Level::detect(), model, material, scene);
+    chunked_aos(positions, normals, out, |pos, nor, out, [r, g, b]| {
+        shading.shade(pos, nor, SoaRgb::new(r, g, b));
+        for (j, o) in out.iter_mut().enumerate() {
+            *o = Vec3::new(r[j], g[j], b[j]);
+        }
+    })
 }
 
 /// [`shade_batch_aos`] into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` as
@@ -515,33 +487,29 @@ pub fn shade_batch_aos_rgba8<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec
     normals: &[N],
     out: &mut [[u8; 4]],
 ) -> usize {
-    let level = Level::detect();
-    chunked_aos(
-        &Shading::new(level, model, material, scene),
-        positions,
-        normals,
-        out,
-        |c| rgba(crate::linear_to_srgb8(c)),
-    )
+    let shading = Shading::new(Level::detect(), model, material, scene);
+    chunked_aos(positions, normals, out, |pos, nor, out, _| {
+        let inputs = kernel::PointInputs::default();
+        shading.shade_inputs(pos, nor, &inputs, Pixels8::Rgba(out));
+    })
 }
 
-/// Points per chunk of the 8-bit and array-of-structs entry points: a multiple of the kernel's 16
-/// lanes, so the chunks group the points into vectors as one whole call would. Each chunk pays
-/// the kernel's entry. Measured at 4096 points: into RGBA, 175 Mpoints/s with 256-point chunks,
-/// 189 with 512, 198 with 1024; from `&[Vec3]`, 273 with 512 and 301 with 1024 (copying into
-/// `Vec`s around one `shade_batch` call: 305). At 1024 the buffers take 12 KiB (8-bit output) and
-/// 36 KiB (array-of-structs input) of stack.
+/// Points per chunk of the array-of-structs entry points: a multiple of the kernel's 16 lanes, so
+/// the chunks group the points into vectors as one whole call would. Each chunk pays the kernel's
+/// entry. Measured at 4096 points from `&[Vec3]`: 273 Mpoints/s with 512-point chunks and 301
+/// with 1024 (copying into `Vec`s around one `shade_batch` call: 305). At 1024 the buffers take
+/// 36 KiB of stack.
 const CHUNK: usize = 1024;
 
-/// Shades `min` of the lengths chunk by chunk, transposing each into stack arrays, and writes
-/// `pack(colour)` per point; returns the count.
+/// Shades `min` of the lengths chunk by chunk, transposing each into stack arrays: `shade(pos,
+/// nor, out, rgb)` shades a chunk's points into its part of `out`, with three stack slices of the
+/// chunk's length to use for linear colours; returns the count.
 #[inline(always)]
-fn chunked_aos<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3, T>(
-    shading: &Shading<'_, '_, M, L>,
+fn chunked_aos<P: AosVec3, N: AosVec3, T>(
     positions: &[P],
     normals: &[N],
     out: &mut [T],
-    pack: impl Fn(Vec3) -> T,
+    shade: impl Fn(SoaVec3<'_>, SoaVec3<'_>, &mut [T], [&mut [f32]; 3]),
 ) -> usize {
     debug_assert!(
         positions.len() == normals.len() && out.len() == positions.len(),
@@ -563,82 +531,30 @@ fn chunked_aos<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3, T>(
         }
         let pos = SoaVec3::new(&px[..len], &py[..len], &pz[..len]);
         let nor = SoaVec3::new(&nx[..len], &ny[..len], &nz[..len]);
-        shading.shade(
-            pos,
-            nor,
-            SoaRgb::new(&mut r[..len], &mut g[..len], &mut b[..len]),
-        );
-        for (j, o) in out.iter_mut().enumerate() {
-            *o = pack(Vec3::new(r[j], g[j], b[j]));
-        }
+        shade(pos, nor, out, [&mut r[..len], &mut g[..len], &mut b[..len]]);
     }
     n
 }
 
-/// Shades the first `min(len, out.len())` points chunk by chunk into a stack buffer and writes
-/// each point's 8-bit sRGB colour as `pack(rgb)`; returns the count.
-#[inline(always)]
-fn chunked<M: BatchModel, L: BatchLight, T>(
+/// Shades the first `min(len, out.len())` points into an 8-bit frame, encoded in the kernel's
+/// lanes; returns the count.
+fn pixels<M: BatchModel, L: BatchLight>(
     shading: &Shading<'_, '_, M, L>,
     positions: SoaVec3<'_>,
     normals: SoaVec3<'_>,
-    inputs: &kernel::PointInputs<'_>,
-    out: &mut [T],
-    pack: impl Fn([u8; 3]) -> T,
-) -> usize {
-    chunked_covered(shading, positions, normals, inputs, None, out, pack)
-}
-
-/// [`chunked`] that, given a `coverage` mask, shades and writes only the covered points (each
-/// run of them in one kernel call) and leaves the rest of `out` untouched.
-#[inline(always)]
-fn chunked_covered<M: BatchModel, L: BatchLight, T>(
-    shading: &Shading<'_, '_, M, L>,
-    positions: SoaVec3<'_>,
-    normals: SoaVec3<'_>,
-    inputs: &kernel::PointInputs<'_>,
-    coverage: Option<&[bool]>,
-    out: &mut [T],
-    pack: impl Fn([u8; 3]) -> T,
+    mut out: Pixels8<'_>,
 ) -> usize {
     debug_assert!(
         same_lengths(positions, normals, out.len()),
         "shade_batch_*8: the six input slices and the output must have the same length"
     );
     let n = positions.len().min(normals.len()).min(out.len());
-    let (mut r, mut g, mut b) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
-    for (k, out) in out[..n].chunks_mut(CHUNK).enumerate() {
-        let range = k * CHUNK..k * CHUNK + out.len();
-        let pos = SoaVec3::new(
-            &positions.x[range.clone()],
-            &positions.y[range.clone()],
-            &positions.z[range.clone()],
-        );
-        let nor = SoaVec3::new(
-            &normals.x[range.clone()],
-            &normals.y[range.clone()],
-            &normals.z[range],
-        );
-        let len = out.len();
-        let (r, g, b) = (&mut r[..len], &mut g[..len], &mut b[..len]);
-        let Some(coverage) = coverage else {
-            shading.shade_inputs(pos, nor, &inputs.from(k * CHUNK), SoaRgb::new(r, g, b));
-            for (o, ((&r, &g), &b)) in out.iter_mut().zip(r.iter().zip(g.iter()).zip(b.iter())) {
-                *o = pack(crate::linear_to_srgb8(Vec3::new(r, g, b)));
-            }
-            continue;
-        };
-        let covered = &coverage[k * CHUNK..k * CHUNK + len];
-        let inputs = inputs.from(k * CHUNK);
-        for run in covered_runs(covered) {
-            let mut rgb = SoaRgb::new(&mut *r, &mut *g, &mut *b);
-            shading.shade_range(pos, nor, &inputs, &mut rgb, run.clone());
-            for j in run {
-                out[j] = pack(crate::linear_to_srgb8(Vec3::new(r[j], g[j], b[j])));
-            }
-        }
-    }
-    n
+    shading.shade_inputs(
+        positions.range(0..n),
+        normals.range(0..n),
+        &kernel::PointInputs::default(),
+        out.part(0..n),
+    )
 }
 
 /// The maximal runs of `true` in `coverage`, as index ranges, in order.

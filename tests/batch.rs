@@ -1097,8 +1097,8 @@ fn unsaturated_points_of_a_call_that_could_saturate_are_as_accurate() {
 }
 
 /// The 8-bit outputs at every level: each pixel is `linear_to_srgb8` of the same level's `f32`
-/// output, alpha 255, and `xrgb8` packs the same levels; sizes that are not multiples of the
-/// 1024-point chunks, random and adversarial points, and a scene the kernel sends to the scalar
+/// output, alpha 255, and `xrgb8` packs the same levels; a size that is not a multiple of the
+/// kernel's 16 lanes, random and adversarial points, and a scene the kernel sends to the scalar
 /// path. Against the scalar `shade`, a level may differ by one where the two colours straddle a
 /// level boundary: at most 1 % of the channels here (the two differ by the kernel's documented
 /// error, a few 1e-6, against a level spacing of about 4e-3 where it is narrowest in [0, 1]).

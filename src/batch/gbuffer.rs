@@ -3,9 +3,10 @@
 use super::kernel::PointInputs;
 use super::level::{Level, UnsupportedLevel};
 use super::prepare::{BatchLight, BatchModel};
+use super::sink::Pixels8;
 use super::sink::Sink;
 use super::soa::{SoaRgb, SoaTerms, SoaVec3};
-use super::{Shading, chunked_covered, covered_runs, rgba, xrgb};
+use super::{Shading, covered_runs};
 use crate::material::Material;
 use crate::shade::Scene;
 
@@ -313,8 +314,8 @@ pub fn shade_gbuffer_with_level<M: BatchModel, L: BatchLight>(
 }
 
 /// [`shade_gbuffer`] straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
-/// `[r, g, b] = linear_to_srgb8` of [`shade_gbuffer`]'s colour, in 1024-point chunks on the stack
-/// as [`shade_batch_rgba8`](crate::shade_batch_rgba8) writes them. Alpha is 255 at every shaded
+/// `[r, g, b] = linear_to_srgb8` of [`shade_gbuffer`]'s colour, encoded in the kernel's lanes as
+/// [`shade_batch_rgba8`](crate::shade_batch_rgba8) encodes them. Alpha is 255 at every shaded
 /// point; with a coverage mask, uncovered pixels keep all four bytes.
 ///
 /// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with `out` in place of the
@@ -326,7 +327,14 @@ pub fn shade_gbuffer_rgba8<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [[u8; 4]],
 ) -> usize {
-    encoded(Level::detect(), model, material, scene, gbuffer, out, rgba)
+    run(
+        Level::detect(),
+        model,
+        material,
+        scene,
+        gbuffer,
+        Pixels8::Rgba(out),
+    )
 }
 
 /// [`shade_gbuffer_rgba8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -342,12 +350,19 @@ pub fn shade_gbuffer_rgba8_with_level<M: BatchModel, L: BatchLight>(
     if !level.is_supported() {
         return Err(UnsupportedLevel(level));
     }
-    Ok(encoded(level, model, material, scene, gbuffer, out, rgba))
+    Ok(run(
+        level,
+        model,
+        material,
+        scene,
+        gbuffer,
+        Pixels8::Rgba(out),
+    ))
 }
 
 /// [`shade_gbuffer`] straight into a `0x00RRGGBB` frame (what minifb and softbuffer take):
-/// `out[i]` holds `linear_to_srgb8` of [`shade_gbuffer`]'s colour, in 1024-point chunks on the
-/// stack as [`shade_batch_xrgb8`](crate::shade_batch_xrgb8) writes them; the top byte is 0.
+/// `out[i]` holds `linear_to_srgb8` of [`shade_gbuffer`]'s colour, encoded in the kernel's lanes
+/// as [`shade_batch_xrgb8`](crate::shade_batch_xrgb8) encodes them; the top byte is 0.
 ///
 /// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with `out` in place of the
 /// three output slices; the levels are those of [`shade_gbuffer`]'s `f32` output, bit for bit.
@@ -373,7 +388,14 @@ pub fn shade_gbuffer_xrgb8<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [u32],
 ) -> usize {
-    encoded(Level::detect(), model, material, scene, gbuffer, out, xrgb)
+    run(
+        Level::detect(),
+        model,
+        material,
+        scene,
+        gbuffer,
+        Pixels8::Xrgb(out),
+    )
 }
 
 /// [`shade_gbuffer_xrgb8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -389,7 +411,14 @@ pub fn shade_gbuffer_xrgb8_with_level<M: BatchModel, L: BatchLight>(
     if !level.is_supported() {
         return Err(UnsupportedLevel(level));
     }
-    Ok(encoded(level, model, material, scene, gbuffer, out, xrgb))
+    Ok(run(
+        level,
+        model,
+        material,
+        scene,
+        gbuffer,
+        Pixels8::Xrgb(out),
+    ))
 }
 
 /// [`shade_gbuffer`] writing each term apart: `out.ambient`, `out.diffuse` and `out.specular`
@@ -473,25 +502,4 @@ pub(super) fn run<M: BatchModel, L: BatchLight, O: Sink>(
         shading.shade_range(pos, nor, &inputs, &mut out, run);
     }
     n
-}
-
-fn encoded<M: BatchModel, L: BatchLight, T>(
-    level: Level,
-    model: &M,
-    material: &Material,
-    scene: &Scene<'_, L>,
-    gbuffer: &GBuffer<'_>,
-    out: &mut [T],
-    pack: impl Fn([u8; 3]) -> T,
-) -> usize {
-    let (inputs, n) = gbuffer.inputs(scene.lights.len(), material);
-    debug_assert!(
-        out.len() == n,
-        "shade_gbuffer_*8: the output must have the G-buffer's length"
-    );
-    let n = n.min(out.len());
-    let shading = Shading::with_inputs(level, model, material, scene, &inputs);
-    let (pos, nor) = gbuffer.prefix(n);
-    let coverage = gbuffer.coverage.map(|c| &c[..n]);
-    chunked_covered(&shading, pos, nor, &inputs, coverage, &mut out[..n], pack)
 }

@@ -36,9 +36,7 @@ use crate::gate::SpecularGate;
 use crate::light::SpotLight;
 use crate::material::Material;
 use crate::math;
-use crate::pow::{
-    EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, auto_split_per_point, lobe_pow,
-};
+use crate::pow::{EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, lobe_pow};
 use crate::reflection::normalization::Normalization;
 use crate::shade::{Scene, Viewer};
 use crate::shader::Shader;
@@ -509,42 +507,68 @@ fn poly<S: Simd, const N: usize>(s: S, t: S::V, c: &[f32; N]) -> S::V {
 }
 
 /// `log2 x` for `x ∈ (0, 1]` (as `pow::log2_poly`): `x = m·2^e` with `m ∈ [√½, √2)`, then
-/// `e + t·P(t)` with `t = m − 1`; subnormal `x` scaled by `2²⁴` first.
+/// `e + t·P(t)` with `t = m − 1`; subnormal `x` scaled by `2²⁴` first, unless `NORMAL` says
+/// every `x` is a normal number.
 #[inline(always)]
-fn log2<S: Simd, const N: usize>(s: S, x: S::V, c: &[f32; N]) -> S::V {
+pub(super) fn log2<S: Simd, const N: usize, const NORMAL: bool>(
+    s: S,
+    x: S::V,
+    c: &[f32; N],
+) -> S::V {
     let sub = s.lt(x, s.splat(f32::MIN_POSITIVE));
-    let xs = s.select(sub, s.mul(x, s.splat(16_777_216.0)), x);
+    let xs = if NORMAL {
+        x
+    } else {
+        s.select(sub, s.mul(x, s.splat(16_777_216.0)), x)
+    };
     let bits = s.to_bits(xs);
     let e = s.sar23(s.sub_i(bits, s.splat_i(0x3f35_04f3)));
     let m = s.bits_to_f32(s.sub_i(bits, s.shl23(e)));
     let t = s.sub(m, s.splat(1.0));
     let ef = s.to_f32(e);
-    let ef = s.select(sub, s.sub(ef, s.splat(24.0)), ef);
+    let ef = if NORMAL {
+        ef
+    } else {
+        s.select(sub, s.sub(ef, s.splat(24.0)), ef)
+    };
     s.mul_add(t, poly(s, t, c), ef)
 }
 
 /// `2^y` for `y ≤ 0`, 0 where `y < −100` (as `pow::poly_pow`'s): `y = r + f` with `r` the nearest
 /// integer (by the `1.5·2²³` trick), `2^f ≈ 1 + f·R(f)`, and `2^r` built in the exponent bits.
+/// `IN_RANGE` says every `y` is already in `[−100, 0]`.
 #[inline(always)]
-fn exp2<S: Simd, const N: usize>(s: S, y: S::V, c: &[f32; N]) -> S::V {
+pub(super) fn exp2<S: Simd, const N: usize, const IN_RANGE: bool>(
+    s: S,
+    y: S::V,
+    c: &[f32; N],
+) -> S::V {
     let keep = s.ge(y, s.splat(-100.0));
-    let y = s.min(s.max(y, s.splat(-100.0)), s.splat(0.0));
+    let y = if IN_RANGE {
+        y
+    } else {
+        s.min(s.max(y, s.splat(-100.0)), s.splat(0.0))
+    };
     let big = s.add(y, s.splat(12_582_912.0));
     let r = s.sub(big, s.splat(12_582_912.0));
     let ri = s.sub_i(s.to_bits(big), s.splat_i(0x4b40_0000));
     let f = s.sub(y, r);
     let q = s.mul_add(f, poly(s, f, c), s.splat(1.0));
     let scale = s.bits_to_f32(s.shl23(s.add_i(ri, s.splat_i(127))));
-    s.keep(keep, s.mul(q, scale))
+    if IN_RANGE {
+        s.mul(q, scale)
+    } else {
+        s.keep(keep, s.mul(q, scale))
+    }
 }
 
 /// `exp2(e·log2 x)` per lane by the polynomial pair `p`, for `x ∈ (0, 1]`.
 #[inline(always)]
 fn poly_pow<S: Simd>(s: S, p: Poly, x: S::V, e: S::V) -> S::V {
     match p {
-        Poly::P3 => exp2(s, s.mul(e, log2(s, x, &LOG2_3)), &EXP2_3),
-        Poly::P5 => exp2(s, s.mul(e, log2(s, x, &LOG2_5)), &EXP2_4),
-        Poly::P7 => exp2(s, s.mul(e, log2(s, x, &LOG2_7)), &EXP2_5),
+        Poly::P3 => exp2::<S, _, false>(s, s.mul(e, log2::<S, _, false>(s, x, &LOG2_3)), &EXP2_3),
+        Poly::P5 => exp2::<S, _, false>(s, s.mul(e, log2::<S, _, false>(s, x, &LOG2_5)), &EXP2_4),
+        Poly::P7 => exp2::<S, _, false>(s, s.mul(e, log2::<S, _, false>(s, x, &LOG2_7)), &EXP2_5),
     }
 }
 
@@ -605,41 +629,73 @@ pub(crate) struct SurfaceV<S: Simd> {
 }
 
 impl<S: Simd> SurfaceV<S> {
+    /// Points `i..i + count` of `inputs`' per-point surface (the material's values where the
+    /// call has an albedo alone), each slice loaded as one vector and sanitised in it (`clean`);
+    /// `None` without a per-point surface or albedo.
     #[inline(always)]
-    fn new(s: S, lm: &LaneModel, raw: &[Lanes; 10]) -> Self {
-        let sh = clean(&raw[9]);
-        let scale = lane_scales(lm, &sh);
-        let half = if lm.lobe == Lobe::Blinn { 0.5 } else { 1.0 };
-        let exponent = sh.map(|x| auto_split_per_point(half * x).1);
-        // A macro, not a closure: a closure may be left out of line, without the level's features.
-        macro_rules! v3 {
+    fn load(
+        s: S,
+        lm: &LaneModel,
+        inputs: &PointInputs<'_>,
+        i: usize,
+        count: usize,
+    ) -> Option<Self> {
+        if inputs.surface.is_none() && inputs.albedo.is_none() {
+            return None;
+        }
+        // Macros, not closures: a closure may be left out of line, without the level's features.
+        macro_rules! raw {
             ($a:expr) => {
-                [
-                    s.load(&clean(&raw[$a])),
-                    s.load(&clean(&raw[$a + 1])),
-                    s.load(&clean(&raw[$a + 2])),
-                ]
+                match inputs.surface {
+                    Some(slices) => s.load(&load_tail(slices[$a], i, count)),
+                    None => s.splat(inputs.base[$a]),
+                }
             };
         }
-        SurfaceV {
-            ka: v3!(0),
-            kd: v3!(3),
-            ks: v3!(6),
-            scale: s.load(&scale),
-            exponent: s.load(&exponent),
+        // The decoded texel multiplies Ka and Kd before they are sanitised, as the scalar path
+        // orders it (`PointInputs::surface`, then `Shader::shade_surface`).
+        let albedo = match inputs.albedo {
+            Some(albedo) => {
+                let mut lanes = [[1.0f32; W]; 3];
+                for (lane, texel) in albedo[i..i + count].iter().enumerate() {
+                    for (c, l) in lanes.iter_mut().enumerate() {
+                        l[lane] = crate::srgb8_to_linear(texel[c]);
+                    }
+                }
+                Some([s.load(&lanes[0]), s.load(&lanes[1]), s.load(&lanes[2])])
+            }
+            None => None,
+        };
+        macro_rules! tinted {
+            ($a:expr) => {
+                match albedo {
+                    Some(x) => clean(s, s.mul(raw!($a), x[$a % 3])),
+                    None => clean(s, raw!($a)),
+                }
+            };
         }
+        let sh = clean(s, raw!(9));
+        let scale = match lm.normalization {
+            Normalization::None if lm.lobe != Lobe::None => s.splat(1.0),
+            _ => s.load(&lane_scales(lm, &s.store(sh))),
+        };
+        let half = if lm.lobe == Lobe::Blinn { 0.5 } else { 1.0 };
+        Some(SurfaceV {
+            ka: [tinted!(0), tinted!(1), tinted!(2)],
+            kd: [tinted!(3), tinted!(4), tinted!(5)],
+            ks: [clean(s, raw!(6)), clean(s, raw!(7)), clean(s, raw!(8))],
+            scale,
+            // `auto_split_per_point`'s exponent, lane by lane.
+            exponent: clean(s, s.mul(s.splat(half), sh)),
+        })
     }
 }
 
-/// `c` with NaN and negatives as 0 and values past `f32::MAX` as `f32::MAX` (`Material::new`'s
-/// rule), lane by lane.
+/// `v` with NaN and negatives as 0 and values past `f32::MAX` as `f32::MAX` (`Material::new`'s
+/// rule, [`math::clamp_or_lo`]), in every lane.
 #[inline(always)]
-fn clean(c: &Lanes) -> Lanes {
-    let mut r = *c;
-    for x in &mut r {
-        *x = math::clamp_or_lo(*x, 0.0, math::MAX);
-    }
-    r
+fn clean<S: Simd>(s: S, v: S::V) -> S::V {
+    s.min(s.max(v, s.splat(0.0)), s.splat(math::MAX))
 }
 
 /// Each lane's specular normalisation factor for its shininess. The matches are outside the
@@ -1047,7 +1103,7 @@ fn finish<S: Simd, const FOLDED: bool>(
 /// `INPUTS` says whether `inputs` may hold per-point inputs: each level compiles both as separate
 /// functions, so the plain calls' loop is not grown by the G-buffer's instances.
 #[inline(always)]
-pub(crate) fn run<S: Simd, const INPUTS: bool>(s: S, job: Job<'_>) -> usize {
+pub(crate) fn run<S: Simd, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>) -> usize {
     if !INPUTS {
         return match (job.setup.folded, job.setup.calls_out) {
             (true, false) => run_with::<S, _, true, false, false, false>(s, job),
@@ -1109,9 +1165,8 @@ fn shade_chunk<
 where
     S: Simd,
 {
-    let mut raw = [[0.0f32; W]; 10];
-    let surface = if SURFACE && inputs.surface_into(i, count, &mut raw) {
-        Some(SurfaceV::new(s, &k.lm, &raw))
+    let surface = if SURFACE {
+        SurfaceV::load(s, &k.lm, inputs, i, count)
     } else {
         None
     };

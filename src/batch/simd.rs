@@ -99,9 +99,9 @@ pub(crate) trait Simd: Copy {
 /// A level's kernel entries: the batch kernel compiled with the level's instructions, for each
 /// output form. Written by [`level_entry!`] for every level token.
 pub(crate) trait Kernels: Copy {
-    /// Runs the kernel writing total colours over the common prefix of the job's slices;
-    /// returns its length.
-    fn run(self, job: super::kernel::Job<'_>) -> usize;
+    /// Runs the kernel writing total colours (`f32` channels or 8-bit pixels, as the sink
+    /// `O` takes them) over the common prefix of the job's slices; returns its length.
+    fn run<O: super::sink::Sink>(self, job: super::kernel::Job<'_, O>) -> usize;
 
     /// Runs the kernel writing the three terms (one instance per level; see
     /// [`run_terms`](super::kernel::run_terms)).
@@ -119,8 +119,11 @@ macro_rules! level_entry {
         /// The kernel compiled for this level.
         $(#[target_feature(enable = $features)])?
         #[inline(never)]
-        fn kernel<const INPUTS: bool>(t: $level, job: $crate::batch::kernel::Job<'_>) -> usize {
-            $crate::batch::kernel::run::<$level, INPUTS>(t, job)
+        fn kernel<O: $crate::batch::sink::Sink, const INPUTS: bool>(
+            t: $level,
+            job: $crate::batch::kernel::Job<'_, O>,
+        ) -> usize {
+            $crate::batch::kernel::run::<$level, O, INPUTS>(t, job)
         }
 
         /// The terms kernel compiled for this level.
@@ -134,12 +137,15 @@ macro_rules! level_entry {
         }
 
         impl $crate::batch::simd::Kernels for $level {
-            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+            fn run<O: $crate::batch::sink::Sink>(
+                self,
+                job: $crate::batch::kernel::Job<'_, O>,
+            ) -> usize {
                 let inputs = $crate::batch::kernel::has_inputs(job.inputs);
                 level_entry!(@call $($features)?; if inputs {
-                    kernel::<true>(self, job)
+                    kernel::<O, true>(self, job)
                 } else {
-                    kernel::<false>(self, job)
+                    kernel::<O, false>(self, job)
                 })
             }
 

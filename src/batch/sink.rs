@@ -7,6 +7,7 @@ use core::ops::Range;
 use super::kernel::{Job, Lanes, W};
 use super::simd::{Kernels, Simd};
 use super::soa::{SoaRgb, SoaTerms};
+use super::srgb8_lanes;
 use crate::terms::Terms;
 
 /// An output form of the kernel.
@@ -40,11 +41,12 @@ pub(crate) trait Sink {
         Self: Sized;
 }
 
-/// One channel's lanes over `out[i..i + count]`: a whole chunk as one fixed-size copy.
+/// One channel's lanes (or one pixel per lane) over `out[i..i + count]`: a whole chunk as one
+/// fixed-size copy.
 #[inline(always)]
-fn write_lanes(out: &mut [f32], i: usize, count: usize, v: &Lanes) {
+fn write_lanes<T: Copy>(out: &mut [T], i: usize, count: usize, v: &[T; W]) {
     if count == W {
-        if let Ok(a) = <&mut Lanes>::try_from(&mut out[i..i + W]) {
+        if let Ok(a) = <&mut [T; W]>::try_from(&mut out[i..i + W]) {
             *a = *v;
         }
     } else {
@@ -132,5 +134,98 @@ impl Sink for SoaTerms<'_> {
 
     fn run_on<T: Kernels>(t: T, job: Job<'_, Self>) -> usize {
         t.run_terms(job)
+    }
+}
+
+/// An 8-bit frame: the total colour encoded to sRGB levels in the kernel's lanes
+/// ([`srgb8_lanes`](super::srgb8_lanes)), as `[r, g, b, 255]` or as `0x00RRGGBB`.
+pub(crate) enum Pixels8<'a> {
+    /// `[r, g, b, 255]` per point.
+    Rgba(&'a mut [[u8; 4]]),
+    /// `r << 16 | g << 8 | b` per point.
+    Xrgb(&'a mut [u32]),
+}
+
+impl Pixels8<'_> {
+    /// Point `at`'s pixel from its three levels.
+    fn set(&mut self, at: usize, [r, g, b]: [u8; 3]) {
+        match self {
+            Pixels8::Rgba(out) => out[at] = [r, g, b, 255],
+            Pixels8::Xrgb(out) => out[at] = u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b),
+        }
+    }
+}
+
+impl Sink for Pixels8<'_> {
+    const TERMS: bool = false;
+    type Part<'b>
+        = Pixels8<'b>
+    where
+        Self: 'b;
+
+    fn part(&mut self, r: Range<usize>) -> Pixels8<'_> {
+        match self {
+            Pixels8::Rgba(out) => Pixels8::Rgba(&mut out[r]),
+            Pixels8::Xrgb(out) => Pixels8::Xrgb(&mut out[r]),
+        }
+    }
+
+    #[inline(always)]
+    fn len(&self) -> usize {
+        match self {
+            Pixels8::Rgba(out) => out.len(),
+            Pixels8::Xrgb(out) => out.len(),
+        }
+    }
+
+    #[inline(always)]
+    fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]) {
+        let [r, g, b] = rows[0];
+        let (lr, nr) = srgb8_lanes::levels(s, r);
+        let (lg, ng) = srgb8_lanes::levels(s, g);
+        let (lb, nb) = srgb8_lanes::levels(s, b);
+        let (lo, hi, top) = match self {
+            Pixels8::Rgba(_) => (lr, lb, 0xff00_0000),
+            Pixels8::Xrgb(_) => (lb, lr, 0),
+        };
+        let words: [u32; W] =
+            bytemuck::must_cast(s.store(s.bits_to_f32(srgb8_lanes::pack(s, lo, lg, hi, top))));
+        match self {
+            // `[r, g, b, 255]` is the word's little-endian byte order.
+            Pixels8::Rgba(out) => {
+                write_lanes(out, i, count, &bytemuck::must_cast(words.map(u32::to_le)));
+            }
+            Pixels8::Xrgb(out) => write_lanes(out, i, count, &words),
+        }
+        // The lanes within a hair of a level boundary: the table decides.
+        let near = (s.bits(nr) | s.bits(ng) | s.bits(nb)) & (u32::MAX >> (32 - count));
+        if near != 0 {
+            let [r, g, b] = rows[0];
+            self.redo(i, near, &[s.store(r), s.store(g), s.store(b)]);
+        }
+    }
+
+    fn put(&mut self, at: usize, terms: &Terms) {
+        self.set(at, crate::linear_to_srgb8(terms.total()));
+    }
+
+    fn run_on<T: Kernels>(t: T, job: Job<'_, Self>) -> usize {
+        t.run(job)
+    }
+}
+
+impl Pixels8<'_> {
+    /// Re-encodes lanes `near` (bit `j` for lane `j`) of the chunk at `i` by the table.
+    #[cold]
+    #[inline(never)]
+    fn redo(&mut self, i: usize, mut near: u32, [r, g, b]: &[Lanes; 3]) {
+        while near != 0 {
+            let j = near.trailing_zeros() as usize;
+            near &= near - 1;
+            self.set(
+                i + j,
+                crate::linear_to_srgb8(glam::Vec3::new(r[j], g[j], b[j])),
+            );
+        }
     }
 }
