@@ -99,9 +99,12 @@ pub(crate) trait Simd: Copy {
 /// A level's kernel entries: the batch kernel compiled with the level's instructions, for each
 /// output form. Written by [`level_entry!`] for every level token.
 pub(crate) trait Kernels: Copy {
-    /// Runs the kernel writing total colours (`f32` channels or 8-bit pixels, as the sink
-    /// `O` takes them) over the common prefix of the job's slices; returns its length.
-    fn run<O: super::sink::Sink>(self, job: super::kernel::Job<'_, O>) -> usize;
+    /// Runs the kernel writing total colours over the common prefix of the job's slices;
+    /// returns its length.
+    fn run(self, job: super::kernel::Job<'_>) -> usize;
+
+    /// [`run`](Self::run) writing 8-bit pixels.
+    fn run_pixels(self, job: super::kernel::Job<'_, super::sink::Pixels8<'_>>) -> usize;
 
     /// Runs the kernel writing the three terms (one instance per level; see
     /// [`run_terms`](super::kernel::run_terms)).
@@ -136,17 +139,32 @@ macro_rules! level_entry {
             $crate::batch::kernel::run_terms::<$level>(t, job)
         }
 
+        /// `kernel` with or without per-point inputs, as the job has them.
+        #[inline(always)]
+        fn run_total<O: $crate::batch::sink::Sink>(
+            t: $level,
+            job: $crate::batch::kernel::Job<'_, O>,
+        ) -> usize {
+            let inputs = $crate::batch::kernel::has_inputs(job.inputs);
+            level_entry!(@call $($features)?; if inputs {
+                kernel::<O, true>(t, job)
+            } else {
+                kernel::<O, false>(t, job)
+            })
+        }
+
+        // The entries are not generic, so the kernels are compiled once, in this crate, and not
+        // again in every crate that calls the batch API.
         impl $crate::batch::simd::Kernels for $level {
-            fn run<O: $crate::batch::sink::Sink>(
+            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+                run_total(self, job)
+            }
+
+            fn run_pixels(
                 self,
-                job: $crate::batch::kernel::Job<'_, O>,
+                job: $crate::batch::kernel::Job<'_, $crate::batch::sink::Pixels8<'_>>,
             ) -> usize {
-                let inputs = $crate::batch::kernel::has_inputs(job.inputs);
-                level_entry!(@call $($features)?; if inputs {
-                    kernel::<O, true>(self, job)
-                } else {
-                    kernel::<O, false>(self, job)
-                })
+                run_total(self, job)
             }
 
             fn run_terms(

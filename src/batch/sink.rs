@@ -210,7 +210,7 @@ impl Sink for Pixels8<'_> {
     }
 
     fn run_on<T: Kernels>(t: T, job: Job<'_, Self>) -> usize {
-        t.run(job)
+        t.run_pixels(job)
     }
 }
 
