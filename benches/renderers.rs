@@ -9,10 +9,7 @@
 //!   diffuse colour, specular strength, shininess (non-integer, uniform in [2, 128]) and shadow
 //!   factor, one point light, a camera at a point. `phong` is `Shader::shade_surface(..)`.
 //!
-//! - `raster_frame`: the workspace's rasterizer (`raster`) drawing a 400×400 per-pixel frame of a
-//!   lit sphere: `batch` is its `PhongShader`, which shades a draw's visible pixels through
-//!   `phong::shade_gbuffer`; `point` is the same shader seen only through `shade`, one
-//!   `phong::shade` per pixel. Both pictures are compared before timing.
+//! The workspace's rasterizer has its own frame bench (`raster_frame`, `cargo bench -p raster`).
 //!
 //! In `raytrace` and `fragment`, `hand` is LearnOpenGL-style code (normalize, `reflect`, `powf`, `1/(c + l·d + q·d²)`)
 //! with glam, and the `phong` side uses the hand code's gate (`SpecularGate::None`, LearnOpenGL's
@@ -35,9 +32,7 @@ use phong::{
     Attenuation, LightColors, Material, Phong, PointLight, Scene, Shader, Surface, Viewer,
 };
 
-#[path = "support/bench_scene.rs"]
-mod bench_scene;
-use bench_scene::Rng;
+use phong_tools::rng::Rng;
 
 const N: usize = 4096;
 const ATT: (f32, f32, f32) = (1.0, 0.09, 0.032);
@@ -386,64 +381,5 @@ fn fragment(c: &mut Criterion) {
     g.finish();
 }
 
-/// `raster`'s `PhongShader` seen only through `shade`: the trait's default `shade_many`, one
-/// `phong::shade` per pixel.
-struct PointByPoint<'a>(&'a raster::PhongShader<'a>);
-
-impl raster::SurfaceShader for PointByPoint<'_> {
-    fn shade(&self, position: Vec3, normal: Vec3, uv: glam::Vec2) -> Vec3 {
-        self.0.shade(position, normal, uv)
-    }
-}
-
-/// One per-pixel draw of `mesh` into `fb`.
-fn draw_frame<S: raster::SurfaceShader>(
-    fb: &mut raster::Framebuffer,
-    camera: &raster::Camera,
-    mesh: &raster::Mesh,
-    shader: &S,
-) {
-    let mode = raster::ShadingMode::PerPixel;
-    raster::draw(fb, camera, mesh, glam::Mat4::IDENTITY, shader, mode);
-}
-
-fn raster_frame(c: &mut Criterion) {
-    use raster::{Camera, Framebuffer, Mesh, PhongShader};
-    let eye = Vec3::new(0.0, 0.0, 3.0);
-    let lights = [phong::Light::from(phong_light(&FRAG_LIGHT))];
-    let scene = Scene {
-        lights: &lights,
-        ambient: Vec3::ZERO,
-        viewer: phong::Viewer::At(eye),
-    };
-    let m = Material::try_from_color(Vec3::new(1.0, 0.5, 0.31), 32.0).unwrap();
-    let shader = PhongShader::new(phong::Phong::default(), m, scene);
-    let (mesh, camera) = (Mesh::icosphere(4), Camera::look_at(eye, Vec3::ZERO));
-    let frame = |s: &dyn Fn(&mut Framebuffer)| {
-        let mut fb = Framebuffer::new(400, 400, Vec3::ZERO);
-        s(&mut fb);
-        fb
-    };
-    let batch = |fb: &mut Framebuffer| draw_frame(fb, &camera, &mesh, &shader);
-    let point = |fb: &mut Framebuffer| draw_frame(fb, &camera, &mesh, &PointByPoint(&shader));
-    let (a, b) = (frame(&batch), frame(&point));
-    // The batch's documented accuracy (`phong::batch`): every cosine within η = 2e-6 and the
-    // factor within 2e-6 relative, so a lobe `x^s` moves by at most `s·η`: with s = 32 and the
-    // light's diffuse 0.8 and specular 1, per channel at most (32 + 1)·2e-6·1.8 ≈ 1.2e-4.
-    let diff = a.max_difference(&b);
-    assert!(
-        diff <= 1.2e-4,
-        "batch and point-by-point frames differ by {diff:e}"
-    );
-
-    let mut g = c.benchmark_group("raster_frame");
-    g.warm_up_time(Duration::from_millis(500))
-        .measurement_time(Duration::from_secs(3))
-        .sample_size(30);
-    g.bench_function("batch", |bch| bch.iter(|| black_box(frame(&batch))));
-    g.bench_function("point", |bch| bch.iter(|| black_box(frame(&point))));
-    g.finish();
-}
-
-criterion_group!(benches, raytrace, fragment, raster_frame);
+criterion_group!(benches, raytrace, fragment);
 criterion_main!(benches);

@@ -29,7 +29,7 @@
 //! Before timing, each group asserts that `scalar`, `scalar_opaque`, `batch` and `batch_frac` agree with
 //! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
 //!
-//! Run: `cargo bench --bench shading`; then `cargo run --release --example performance`.
+//! Run: `cargo bench --bench shading`; then `cargo run --release -p phong-tools --bin performance`.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -41,9 +41,7 @@ use phong::{
     SoaRgb, SoaVec3, Viewer,
 };
 
-#[path = "support/bench_scene.rs"]
-mod bench_scene;
-use bench_scene::*;
+use phong_tools::bench_scene::*;
 
 /// Nine structure-of-arrays slices carved from one buffer at staggered offsets, so no two arrays
 /// start at the same offset within a 4 KiB page (4 KiB aliasing between arrays at equal page offsets).
@@ -232,7 +230,15 @@ fn assert_close(what: &str, a: Vec3, b: Vec3, i: usize) {
     );
 }
 
-fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
+/// One model's group: `kind` picks `naive_glam`'s lobe, `model_with` the crate's model with a
+/// pow strategy (the per-point rows use `M::default()`, as the quick start does).
+fn group<M: phong::ReflectionModel + phong::BatchModel + Default>(
+    c: &mut Criterion,
+    name: &str,
+    kind: Kind,
+    n: usize,
+    model_with: fn(PowStrategy) -> M,
+) {
     let (p, nn) = points(n, 0x5eed);
     let lights = [light()];
     let scene = scene(&lights);
@@ -246,32 +252,16 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
     let check = |soa: &mut Soa, scalar: &mut Vec<Vec3>, naive: &mut Vec<Vec3>, s: f32| {
         let m = material(s);
         naive_glam(kind, s, &p, &nn, naive);
-        match kind {
-            Kind::Phong => {
-                shader_loop::<Phong, false>(&lights[0], &m, &p, &nn, scalar);
-                for i in 0..n {
-                    assert_close("scalar", scalar[i], naive[i], i);
-                }
-                shader_loop::<Phong, true>(&lights[0], &m, &p, &nn, scalar);
-                for i in 0..n {
-                    assert_close("scalar_opaque", scalar[i], naive[i], i);
-                }
-                scalar_loop(&Phong::default(), &m, &scene, &p, &nn, scalar);
-                batch_run(level, &phong_model(PowStrategy::Auto), &m, &scene, soa);
-            }
-            Kind::Blinn => {
-                shader_loop::<BlinnPhong, false>(&lights[0], &m, &p, &nn, scalar);
-                for i in 0..n {
-                    assert_close("scalar", scalar[i], naive[i], i);
-                }
-                shader_loop::<BlinnPhong, true>(&lights[0], &m, &p, &nn, scalar);
-                for i in 0..n {
-                    assert_close("scalar_opaque", scalar[i], naive[i], i);
-                }
-                scalar_loop(&BlinnPhong::default(), &m, &scene, &p, &nn, scalar);
-                batch_run(level, &blinn_model(PowStrategy::Auto), &m, &scene, soa);
-            }
+        shader_loop::<M, false>(&lights[0], &m, &p, &nn, scalar);
+        for i in 0..n {
+            assert_close("scalar", scalar[i], naive[i], i);
         }
+        shader_loop::<M, true>(&lights[0], &m, &p, &nn, scalar);
+        for i in 0..n {
+            assert_close("scalar_opaque", scalar[i], naive[i], i);
+        }
+        scalar_loop(&M::default(), &m, &scene, &p, &nn, scalar);
+        batch_run(level, &model_with(PowStrategy::Auto), &m, &scene, soa);
         for i in 0..n {
             assert_close("shade", scalar[i], naive[i], i);
             assert_close("batch", soa_out(soa, i), naive[i], i);
@@ -293,108 +283,49 @@ fn group(c: &mut Criterion, name: &str, kind: Kind, n: usize) {
     g.bench_function("naive_glam", |b| {
         b.iter(|| naive_glam(kind, 32.0, black_box(&p), black_box(&nn), &mut naive))
     });
-    match kind {
-        Kind::Phong => {
-            let model = phong_model(PowStrategy::Auto);
-            g.bench_function("scalar", |b| {
-                b.iter(|| {
-                    shader_loop::<Phong, false>(
-                        black_box(&lights[0]),
-                        &m32,
-                        black_box(&p),
-                        &nn,
-                        &mut scalar,
-                    )
-                })
-            });
-            g.bench_function("scalar_opaque", |b| {
-                b.iter(|| {
-                    shader_loop::<Phong, true>(
-                        black_box(&lights[0]),
-                        &m32,
-                        black_box(&p),
-                        &nn,
-                        &mut scalar,
-                    )
-                })
-            });
-            g.bench_function("shade", |b| {
-                b.iter(|| {
-                    scalar_loop(
-                        black_box(&Phong::default()),
-                        &m32,
-                        &scene,
-                        black_box(&p),
-                        &nn,
-                        &mut scalar,
-                    )
-                })
-            });
-            g.bench_function("batch", |b| {
-                b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))
-            });
-            g.bench_function("batch_frac", |b| {
-                b.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
-            });
-        }
-        Kind::Blinn => {
-            let model = blinn_model(PowStrategy::Auto);
-            g.bench_function("scalar", |b| {
-                b.iter(|| {
-                    shader_loop::<BlinnPhong, false>(
-                        black_box(&lights[0]),
-                        &m32,
-                        black_box(&p),
-                        &nn,
-                        &mut scalar,
-                    )
-                })
-            });
-            g.bench_function("scalar_opaque", |b| {
-                b.iter(|| {
-                    shader_loop::<BlinnPhong, true>(
-                        black_box(&lights[0]),
-                        &m32,
-                        black_box(&p),
-                        &nn,
-                        &mut scalar,
-                    )
-                })
-            });
-            g.bench_function("shade", |b| {
-                b.iter(|| {
-                    scalar_loop(
-                        black_box(&BlinnPhong::default()),
-                        &m32,
-                        &scene,
-                        black_box(&p),
-                        &nn,
-                        &mut scalar,
-                    )
-                })
-            });
-            g.bench_function("batch", |b| {
-                b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))
-            });
-            g.bench_function("batch_frac", |b| {
-                b.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
-            });
-        }
-    }
+    let model = model_with(PowStrategy::Auto);
+    g.bench_function("scalar", |b| {
+        b.iter(|| {
+            shader_loop::<M, false>(black_box(&lights[0]), &m32, black_box(&p), &nn, &mut scalar)
+        })
+    });
+    g.bench_function("scalar_opaque", |b| {
+        b.iter(|| {
+            shader_loop::<M, true>(black_box(&lights[0]), &m32, black_box(&p), &nn, &mut scalar)
+        })
+    });
+    g.bench_function("shade", |b| {
+        b.iter(|| {
+            scalar_loop(
+                black_box(&M::default()),
+                &m32,
+                &scene,
+                black_box(&p),
+                &nn,
+                &mut scalar,
+            )
+        })
+    });
+    g.bench_function("batch", |b| {
+        b.iter(|| batch_run(level, black_box(&model), &m32, &scene, &mut soa))
+    });
+    g.bench_function("batch_frac", |b| {
+        b.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
+    });
     g.finish();
 }
 
 fn phong_4096(c: &mut Criterion) {
-    group(c, "phong_4096", Kind::Phong, 4096);
+    group(c, "phong_4096", Kind::Phong, 4096, phong_model);
 }
 fn blinn_4096(c: &mut Criterion) {
-    group(c, "blinn_4096", Kind::Blinn, 4096);
+    group(c, "blinn_4096", Kind::Blinn, 4096, blinn_model);
 }
 fn phong_1m(c: &mut Criterion) {
-    group(c, "phong_1m", Kind::Phong, 1 << 20);
+    group(c, "phong_1m", Kind::Phong, 1 << 20, phong_model);
 }
 fn blinn_1m(c: &mut Criterion) {
-    group(c, "blinn_1m", Kind::Blinn, 1 << 20);
+    group(c, "blinn_1m", Kind::Blinn, 1 << 20, blinn_model);
 }
 
 /// Every pow strategy in the batch path, both models, at s = 32 and s = 20.5 (N = 4096).
@@ -558,7 +489,7 @@ fn parallel_1m(c: &mut Criterion) {
 /// computed through `srgb_encode` (`powf`) and `quantize_u8`, over 4096 shaded colours.
 fn srgb8_4096(c: &mut Criterion) {
     let n = 4096;
-    let mut rng = bench_scene::Rng::new(0x5eb8);
+    let mut rng = Rng::new(0x5eb8);
     let colours: Vec<Vec3> = (0..n)
         .map(|_| Vec3::new(rng.unit_f32(), rng.unit_f32(), rng.unit_f32()))
         .collect();
@@ -909,7 +840,7 @@ fn falloff_4096(c: &mut Criterion) {
 fn tiled_64_lights(c: &mut Criterion) {
     let (width, height) = (256usize, 128usize);
     let n = width * height;
-    let mut rng = bench_scene::Rng::new(0x7113);
+    let mut rng = Rng::new(0x7113);
     let (mut p, mut nn) = ([vec![], vec![], vec![]], [vec![], vec![], vec![]]);
     for y in 0..height {
         for x in 0..width {

@@ -1,16 +1,9 @@
 //! Guards every bound in docs/accuracy.md: the same measurements as
-//! `cargo run --release --example accuracy`, on a smaller sample (the first samples of the same
+//! `cargo run --release -p phong-tools --bin accuracy`, on a smaller sample (the first samples of the same
 //! seeded streams), asserted against bounds stated once, here, each with the number the full run
 //! measured and why the bound is what it is. A regression in any `f32` function fails this test.
 
-#[path = "support/measure.rs"]
-mod measure;
-#[path = "support/reference.rs"]
-mod reference;
-#[path = "support/rng.rs"]
-mod rng;
-#[path = "support/slivers.rs"]
-mod slivers;
+use phong_tools::{measure, reference, rng, slivers};
 
 use glam::{DVec3, Vec3};
 use phong::{BlinnPhong, Incidence, ReflectionModel};

@@ -21,9 +21,7 @@ use phong::{
     SoaVec3, SpecularGate, SpotCone, SpotLight, Viewer,
 };
 
-#[path = "support/rng.rs"]
-mod rng;
-use rng::Rng;
+use phong_tools::rng::Rng;
 
 /// Positions and normals in array-of-structs form, converted to SoA for each call.
 struct Batch {

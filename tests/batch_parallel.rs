@@ -10,9 +10,7 @@ use phong::{
 };
 use proptest::prelude::*;
 
-#[path = "support/rng.rs"]
-mod rng;
-use rng::Rng;
+use phong_tools::rng::Rng;
 
 /// Positions and normals as SoA columns, with some degenerate points (zero normal, a point at the
 /// first light, a huge coordinate) among ordinary ones.

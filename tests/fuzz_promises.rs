@@ -28,8 +28,7 @@
 
 #[path = "support/batch_range.rs"]
 mod batch_range;
-#[path = "support/rng.rs"]
-mod rng;
+use phong_tools::{models, rng};
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -37,10 +36,9 @@ use std::time::Instant;
 
 use glam::{Mat3, Vec3};
 use phong::{
-    Attenuation, BlinnPhong, DirectionalLight, GBuffer, Incidence, Lambert, Level, Light,
-    LightColors, Material, Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel,
-    Scene, Shader, SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface,
-    TileCulling, Viewer,
+    Attenuation, BlinnPhong, DirectionalLight, GBuffer, Incidence, Level, Light, LightColors,
+    Material, Model, Normalization, Phong, PointLight, PowStrategy, ReflectionModel, Scene, Shader,
+    SoaRgb, SoaSurface, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, TileCulling, Viewer,
 };
 
 /// `v` rounded to `f32` with each component saturated to `±f32::MAX`: the generators' arithmetic
@@ -242,21 +240,8 @@ impl Rng {
             Normalization::EnergyExact,
         ][self.below(3) as usize];
         let pow = self.pow();
-        match self.below(3) {
-            0 => Lambert::default().into(),
-            1 => Phong {
-                gate,
-                normalization,
-                pow,
-            }
-            .into(),
-            _ => BlinnPhong {
-                gate,
-                normalization,
-                pow,
-            }
-            .into(),
-        }
+        // Lambert takes the drawn normalisation too (it used to be Lambert::default() only).
+        models::assemble(self.below(3) as usize, gate, normalization, pow)
     }
     fn material(&mut self) -> Material {
         Material::try_new(

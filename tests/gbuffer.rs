@@ -11,8 +11,6 @@
 
 #[path = "support/batch_range.rs"]
 mod batch_range;
-#[path = "support/rng.rs"]
-mod rng;
 
 use glam::Vec3;
 use phong::{
@@ -21,7 +19,7 @@ use phong::{
     SoaRgb, SoaSurface, SoaTerms, SoaVec3, SpecularGate, SpotCone, SpotLight, Surface, TileCulling,
     Viewer, VisibilityFn,
 };
-use rng::Rng;
+use phong_tools::rng::Rng;
 
 /// One point light's parameters, so the test can rebuild it with its colours scaled.
 #[derive(Clone, Copy)]

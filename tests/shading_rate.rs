@@ -9,10 +9,8 @@ use phong::{
 };
 use proptest::prelude::*;
 
-#[path = "support/rng.rs"]
-mod rng;
 mod strategies;
-use rng::Rng;
+use phong_tools::rng::Rng;
 
 /// A point in the cube `[-r, r]³`.
 fn point(r: f32) -> impl Strategy<Value = Vec3> {

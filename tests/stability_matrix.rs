@@ -1,10 +1,9 @@
 //! The stability matrix of docs/stability.md, asserted: for every classic failure mode, what the
 //! naive formula does (measured here, so the table cannot claim a failure that does not happen) and
-//! what `phong` does instead. The rows live in `tests/support/stability_cases.rs`, shared with the
+//! what `phong` does instead. The rows live in `tools/src/stability_cases.rs`, shared with the
 //! accuracy example that writes the document.
 
-#[path = "support/stability_cases.rs"]
-mod stability_cases;
+use phong_tools::stability_cases;
 
 use stability_cases::cases;
 
@@ -66,6 +65,6 @@ fn docs_stability_md_is_current() {
     let on_disk = std::fs::read_to_string(path).expect("docs/stability.md exists");
     assert!(
         on_disk == stability_cases::markdown(),
-        "docs/stability.md is stale: run `cargo run --release --example accuracy`"
+        "docs/stability.md is stale: run `cargo run --release -p phong-tools --bin accuracy`"
     );
 }

@@ -14,8 +14,7 @@ use glam::{DVec3, Mat3, Vec3};
 use phong::{Attenuation, Model, Normalization, PowStrategy, SpecularGate};
 use proptest::prelude::*;
 
-#[path = "../support/models.rs"]
-mod models;
+use phong_tools::models;
 
 /// A unit vector, uniform on the sphere (Archimedes: uniform `z` and uniform azimuth).
 pub(crate) fn unit_vec3() -> impl Strategy<Value = Vec3> {

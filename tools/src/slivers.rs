@@ -1,8 +1,5 @@
 //! The sliver study: an adversarial set of thin triangles, the candidate methods for their normal,
 //! and the angular error of each against the exact normal of the `f32` vertices.
-//!
-//! Needs `crate::reference` and `crate::rng` declared next to it.
-#![allow(dead_code, reason = "each includer uses its own subset")]
 
 use glam::{DVec3, Vec3};
 
@@ -11,7 +8,7 @@ use crate::rng::Rng;
 
 /// The two kinds of sliver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Shape {
+pub enum Shape {
     /// One short edge: two long, nearly parallel edges meet at a sharp tip.
     Needle,
     /// No short edge: one angle close to 180°, the third vertex just off the longest edge.
@@ -20,7 +17,8 @@ pub(crate) enum Shape {
 
 /// One triangle of the set, with the parameters it was made from.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Sliver {
+pub struct Sliver {
+    /// Which kind of sliver.
     pub shape: Shape,
     /// Height over longest edge.
     pub aspect: f64,
@@ -28,12 +26,16 @@ pub(crate) struct Sliver {
     pub size: f64,
     /// Distance of the triangle from the origin.
     pub offset: f64,
+    /// The vertices.
     pub p: [Vec3; 3],
 }
 
-pub(crate) const ASPECTS: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5];
-pub(crate) const SIZES: [f64; 3] = [1e-2, 1e-1, 1.0];
-pub(crate) const OFFSETS: [f64; 6] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5];
+/// The aspect ratios (height over longest edge) of the set.
+pub const ASPECTS: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5];
+/// The longest edges of the set.
+pub const SIZES: [f64; 3] = [1e-2, 1e-1, 1.0];
+/// The distances from the origin of the set.
+pub const OFFSETS: [f64; 6] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5];
 const PERMUTATIONS: [[usize; 3]; 6] = [
     [0, 1, 2],
     [0, 2, 1],
@@ -46,7 +48,7 @@ const PERMUTATIONS: [[usize; 3]; 6] = [
 /// The adversarial set: every shape × aspect × size × offset, `per_cell` random orientations and
 /// placements each, every one of the 6 vertex orders. Triangles whose `f32` vertices have exactly
 /// zero area (the sliver was rounded flat) are left out and counted in the second return value.
-pub(crate) fn sliver_set(rng: &mut Rng, per_cell: usize) -> (Vec<Sliver>, usize) {
+pub fn sliver_set(rng: &mut Rng, per_cell: usize) -> (Vec<Sliver>, usize) {
     let mut out = Vec::new();
     let mut flat = 0;
     for shape in [Shape::Needle, Shape::Cap] {
@@ -93,19 +95,21 @@ pub(crate) fn sliver_set(rng: &mut Rng, per_cell: usize) -> (Vec<Sliver>, usize)
 }
 
 /// A method for the (unnormalised) normal of a triangle.
-pub(crate) struct Candidate {
+pub struct Candidate {
+    /// The method's name in the tables.
     pub name: &'static str,
+    /// The method.
     pub run: fn(Vec3, Vec3, Vec3) -> Vec3,
 }
 
 /// Naive `f32`: `(P1 − P0) × (P2 − P0)`.
-pub(crate) fn naive(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub fn naive(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     (p1 - p0).cross(p2 - p0)
 }
 
 /// Pivoting: the cross product of the two edges leaving the vertex opposite the longest edge
 /// (the two shorter edges), in the cyclic order that keeps the orientation.
-pub(crate) fn pivot(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub fn pivot(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     let l0 = (p2 - p1).length_squared(); // opposite P0
     let l1 = (p0 - p2).length_squared(); // opposite P1
     let l2 = (p1 - p0).length_squared(); // opposite P2
@@ -119,7 +123,7 @@ pub(crate) fn pivot(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
 }
 
 /// `a·b − c·d` by Kahan's algorithm: one FMA recovers the rounding error of `c·d` exactly.
-pub(crate) fn kahan_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
+pub fn kahan_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
     let w = c * d;
     let e = (-c).mul_add(d, w);
     let f = a.mul_add(b, -w);
@@ -127,7 +131,7 @@ pub(crate) fn kahan_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
 }
 
 /// The cross product of the `f32` edges with every component by Kahan's difference of products.
-pub(crate) fn kahan(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
+pub fn kahan(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
     let (a, b) = (p1 - p0, p2 - p0);
     Vec3::new(
         kahan_diff_of_products(a.y, b.z, a.z, b.y),
@@ -137,7 +141,7 @@ pub(crate) fn kahan(p0: Vec3, p1: Vec3, p2: Vec3) -> Vec3 {
 }
 
 /// The candidates in table order; the crate's own function last.
-pub(crate) fn candidates() -> [Candidate; 4] {
+pub fn candidates() -> [Candidate; 4] {
     [
         Candidate {
             name: "naive f32 (P1−P0)×(P2−P0)",
@@ -160,13 +164,13 @@ pub(crate) fn candidates() -> [Candidate; 4] {
 
 /// The angle in radians between `got` and the exact normal of the triangle; `π` for a zero or
 /// non-finite answer (the method lost the normal entirely).
-pub(crate) fn angular_error(got: Vec3, t: &Sliver) -> f64 {
+pub fn angular_error(got: Vec3, t: &Sliver) -> f64 {
     let exact = reference::triangle_area_normal(t.p[0], t.p[1], t.p[2]);
     angle_between(got.as_dvec3(), exact)
 }
 
 /// The angle between two non-zero vectors, accurate for tiny angles.
-pub(crate) fn angle_between(a: DVec3, b: DVec3) -> f64 {
+pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
     if !a.is_finite() || a == DVec3::ZERO || b == DVec3::ZERO {
         return core::f64::consts::PI;
     }
@@ -176,15 +180,21 @@ pub(crate) fn angle_between(a: DVec3, b: DVec3) -> f64 {
 
 /// Worst and median of a list of errors, and how many were total losses (`π`).
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Summary {
+pub struct Summary {
+    /// The largest error.
     pub worst: f64,
+    /// The median error.
     pub median: f64,
+    /// The 99th percentile.
     pub p99: f64,
+    /// Errors of `π` or more: the normal lost entirely.
     pub lost: usize,
+    /// Errors summarised.
     pub n: usize,
 }
 
-pub(crate) fn summarize(mut e: Vec<f64>) -> Summary {
+/// The [`Summary`] of the errors `e`.
+pub fn summarize(mut e: Vec<f64>) -> Summary {
     if e.is_empty() {
         return Summary::default();
     }
@@ -200,10 +210,7 @@ pub(crate) fn summarize(mut e: Vec<f64>) -> Summary {
 }
 
 /// Each candidate's summary over the triangles `filter` accepts.
-pub(crate) fn study(
-    set: &[Sliver],
-    filter: impl Fn(&Sliver) -> bool,
-) -> Vec<(&'static str, Summary)> {
+pub fn study(set: &[Sliver], filter: impl Fn(&Sliver) -> bool) -> Vec<(&'static str, Summary)> {
     candidates()
         .iter()
         .map(|c| {

@@ -1,15 +1,13 @@
 //! The `f64` reference: every formula of `phong`, written the plain way, in double precision.
 //!
-//! This is the ruler the accuracy example and the accuracy tests measure the `f32` functions
+//! This is the ruler the `accuracy` tool and the accuracy tests measure the `f32` functions
 //! against. It follows the crate's documented conventions (directions point away from the surface,
 //! `0^0 = 0` for a lobe, the listed degenerate-case values) but not its implementation: vectors are
 //! built explicitly (the reflection vector, the halfway vector) instead of the crate's dot-product
 //! shortcuts, and nothing is rescaled or guarded beyond what the documented answer needs.
 //!
-//! Inputs are the `f32` values the crate sees, widened exactly to `f64`. Use it from a test, example
-//! or bench with `#[path = "../tests/support/reference.rs"] mod reference;` at the crate root; it
-//! depends only on `glam` and the public API of `phong`.
-#![allow(dead_code, reason = "each includer uses its own subset")]
+//! Inputs are the `f32` values the crate sees, widened exactly to `f64`. It depends only on `glam`
+//! and the public API of `phong`.
 
 use core::f64::consts::PI;
 
@@ -23,12 +21,12 @@ use phong::{
 // Conversions
 
 /// Widens exactly.
-pub(crate) fn d3(v: Vec3) -> DVec3 {
+pub fn d3(v: Vec3) -> DVec3 {
     v.as_dvec3()
 }
 
 /// Widens exactly.
-pub(crate) fn dm3(m: Mat3) -> DMat3 {
+pub fn dm3(m: Mat3) -> DMat3 {
     m.as_dmat3()
 }
 
@@ -36,12 +34,12 @@ pub(crate) fn dm3(m: Mat3) -> DMat3 {
 // Geometry
 
 /// ‖v‖. `f64` has room for the square of every finite `f32` component, so no rescaling is needed.
-pub(crate) fn length(v: DVec3) -> f64 {
+pub fn length(v: DVec3) -> f64 {
     v.dot(v).sqrt()
 }
 
 /// `v/‖v‖`, or zero for the zero vector or a non-finite one (the crate's documented answer).
-pub(crate) fn normalize_or_zero(v: DVec3) -> DVec3 {
+pub fn normalize_or_zero(v: DVec3) -> DVec3 {
     let l = length(v);
     if l > 0.0 && l.is_finite() {
         v / l
@@ -78,7 +76,7 @@ fn diff_of_products_dd(a: f64, b: f64, c: f64, d: f64) -> f64 {
 ///
 /// This is a stricter ruler than the plain `f64` cross product the crate itself uses, so the
 /// sliver study does not measure the crate against its own arithmetic.
-pub(crate) fn triangle_area_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> DVec3 {
+pub fn triangle_area_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> DVec3 {
     let e1 = d3(p1) - d3(p0);
     let e2 = d3(p2) - d3(p0);
     DVec3::new(
@@ -89,39 +87,39 @@ pub(crate) fn triangle_area_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> DVec3 {
 }
 
 /// The unit normal of the `f32` triangle, or zero when its exact area is zero.
-pub(crate) fn triangle_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> DVec3 {
+pub fn triangle_normal(p0: Vec3, p1: Vec3, p2: Vec3) -> DVec3 {
     normalize_or_zero(triangle_area_normal(p0, p1, p2))
 }
 
 /// `R = 2(N·L)N − L`.
-pub(crate) fn reflect(n: DVec3, l: DVec3) -> DVec3 {
+pub fn reflect(n: DVec3, l: DVec3) -> DVec3 {
     2.0 * n.dot(l) * n - l
 }
 
 /// `H = (L + V)/‖L + V‖`, zero when `L = −V`.
-pub(crate) fn halfway(l: DVec3, v: DVec3) -> DVec3 {
+pub fn halfway(l: DVec3, v: DVec3) -> DVec3 {
     normalize_or_zero(l + v)
 }
 
 /// `N` if `Nref·V > 0`, else `−N`.
-pub(crate) fn face_forward(n: DVec3, v: DVec3, n_ref: DVec3) -> DVec3 {
+pub fn face_forward(n: DVec3, v: DVec3, n_ref: DVec3) -> DVec3 {
     if n_ref.dot(v) > 0.0 { n } else { -n }
 }
 
 /// The inverse transpose `M⁻ᵀ` (undefined for singular `M`: glam returns non-finite entries).
-pub(crate) fn inverse_transpose(m: DMat3) -> DMat3 {
+pub fn inverse_transpose(m: DMat3) -> DMat3 {
     m.inverse().transpose()
 }
 
 /// `sign(det M) · cof(M)` with `sign(0) = +1`; `cof(M) = det(M)·M⁻ᵀ`, built from the columns.
-pub(crate) fn normal_matrix(m: DMat3) -> DMat3 {
+pub fn normal_matrix(m: DMat3) -> DMat3 {
     let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
     let cof = DMat3::from_cols(b.cross(c), c.cross(a), a.cross(b));
     if m.determinant() < 0.0 { -cof } else { cof }
 }
 
 /// `normalize(NM · n)` with the reference normal matrix.
-pub(crate) fn transform_normal(m: DMat3, n: DVec3) -> DVec3 {
+pub fn transform_normal(m: DMat3, n: DVec3) -> DVec3 {
     normalize_or_zero(normal_matrix(m) * n)
 }
 
@@ -139,7 +137,7 @@ fn window(d: f64, r: f64) -> f64 {
 }
 
 /// The attenuation factor at distance `d ≥ 0`, from the table on [`Attenuation`].
-pub(crate) fn attenuation(a: &Attenuation, d: f64) -> f64 {
+pub fn attenuation(a: &Attenuation, d: f64) -> f64 {
     let d = if d.is_nan() || d < 0.0 { 0.0 } else { d };
     match *a {
         Attenuation::None => 1.0,
@@ -164,7 +162,7 @@ pub(crate) fn attenuation(a: &Attenuation, d: f64) -> f64 {
 }
 
 /// The cull radius: `inf{r : factor(d) < t for every d > r}`, solved in `f64`.
-pub(crate) fn cull_radius(a: &Attenuation, t: f64) -> f64 {
+pub fn cull_radius(a: &Attenuation, t: f64) -> f64 {
     if t.is_nan() || t <= 0.0 {
         return f64::INFINITY;
     }
@@ -209,7 +207,7 @@ pub(crate) fn cull_radius(a: &Attenuation, t: f64) -> f64 {
 }
 
 /// OpenGL's spot factor: `(−L·D)^e` inside the cone `−L·D ≥ cos cutoff`, else 0; 0 for zero `L`.
-pub(crate) fn spot_factor(l: DVec3, axis: DVec3, cos_cutoff: f64, exponent: f64) -> f64 {
+pub fn spot_factor(l: DVec3, axis: DVec3, cos_cutoff: f64, exponent: f64) -> f64 {
     let c = -l.dot(axis);
     if l == DVec3::ZERO || c < cos_cutoff {
         0.0
@@ -222,7 +220,7 @@ pub(crate) fn spot_factor(l: DVec3, axis: DVec3, cos_cutoff: f64, exponent: f64)
 // Lobes
 
 /// `x^s` for `x > 0` (clamped to 1 above), 0 for `x ≤ 0`: the crate's lobe power with `0^0 = 0`.
-pub(crate) fn lobe_pow(x: f64, s: f64) -> f64 {
+pub fn lobe_pow(x: f64, s: f64) -> f64 {
     if x > 0.0 {
         x.min(1.0).powf(s.max(0.0))
     } else {
@@ -231,7 +229,7 @@ pub(crate) fn lobe_pow(x: f64, s: f64) -> f64 {
 }
 
 /// The gate's weight for `N·L`.
-pub(crate) fn gate(g: SpecularGate, n_dot_l: f64) -> f64 {
+pub fn gate(g: SpecularGate, n_dot_l: f64) -> f64 {
     match g {
         SpecularGate::Step => {
             if n_dot_l > 0.0 {
@@ -246,7 +244,7 @@ pub(crate) fn gate(g: SpecularGate, n_dot_l: f64) -> f64 {
 }
 
 /// The diffuse lobe `max(N·L, 0)`, over `π` when normalised.
-pub(crate) fn diffuse(norm: Normalization, n_dot_l: f64) -> f64 {
+pub fn diffuse(norm: Normalization, n_dot_l: f64) -> f64 {
     let c = n_dot_l.max(0.0);
     if norm == Normalization::None {
         c
@@ -256,7 +254,7 @@ pub(crate) fn diffuse(norm: Normalization, n_dot_l: f64) -> f64 {
 }
 
 /// Phong's normalisation: `(s + 2)/(2π)` (the same for `Energy` and `EnergyExact`).
-pub(crate) fn phong_factor(norm: Normalization, s: f64) -> f64 {
+pub fn phong_factor(norm: Normalization, s: f64) -> f64 {
     if norm == Normalization::None {
         1.0
     } else {
@@ -265,7 +263,7 @@ pub(crate) fn phong_factor(norm: Normalization, s: f64) -> f64 {
 }
 
 /// Blinn-Phong's normalisation: `(s + 8)/(8π)` or the exact `(s+2)(s+4)/(8π(2^(−s/2) + s))`.
-pub(crate) fn blinn_factor(norm: Normalization, s: f64) -> f64 {
+pub fn blinn_factor(norm: Normalization, s: f64) -> f64 {
     let s = s.max(0.0);
     match norm {
         Normalization::None => 1.0,
@@ -278,7 +276,7 @@ pub(crate) fn blinn_factor(norm: Normalization, s: f64) -> f64 {
 
 /// Phong's specular lobe from the vectors: `R = reflect(N, L)`, `max(R·V, 0)^s`, gated or
 /// normalised. `n`, `l`, `v` unit.
-pub(crate) fn phong_specular(m: &Phong, n: DVec3, l: DVec3, v: DVec3, s: f64) -> f64 {
+pub fn phong_specular(m: &Phong, n: DVec3, l: DVec3, v: DVec3, s: f64) -> f64 {
     let n_dot_l = n.dot(l);
     let lobe = lobe_pow(reflect(n, l).dot(v), s);
     if m.normalization == Normalization::None {
@@ -290,7 +288,7 @@ pub(crate) fn phong_specular(m: &Phong, n: DVec3, l: DVec3, v: DVec3, s: f64) ->
 
 /// Blinn-Phong's specular lobe from the vectors: `H = normalize(L + V)`, `max(N·H, 0)^s`, gated or
 /// normalised; 0 when `L = −V` (no halfway vector).
-pub(crate) fn blinn_specular(m: &BlinnPhong, n: DVec3, l: DVec3, v: DVec3, s: f64) -> f64 {
+pub fn blinn_specular(m: &BlinnPhong, n: DVec3, l: DVec3, v: DVec3, s: f64) -> f64 {
     let n_dot_l = n.dot(l);
     let lobe = lobe_pow(n.dot(halfway(l, v)), s);
     if m.normalization == Normalization::None {
@@ -301,7 +299,7 @@ pub(crate) fn blinn_specular(m: &BlinnPhong, n: DVec3, l: DVec3, v: DVec3, s: f6
 }
 
 /// The diffuse lobe of any model.
-pub(crate) fn model_diffuse(m: &Model, n_dot_l: f64) -> f64 {
+pub fn model_diffuse(m: &Model, n_dot_l: f64) -> f64 {
     let norm = match m {
         Model::Lambert(Lambert { normalization }) => *normalization,
         Model::Phong(p) => p.normalization,
@@ -311,7 +309,7 @@ pub(crate) fn model_diffuse(m: &Model, n_dot_l: f64) -> f64 {
 }
 
 /// The specular lobe of any model (0 for Lambert).
-pub(crate) fn model_specular(m: &Model, n: DVec3, l: DVec3, v: DVec3, s: f64) -> f64 {
+pub fn model_specular(m: &Model, n: DVec3, l: DVec3, v: DVec3, s: f64) -> f64 {
     match m {
         Model::Lambert(_) => 0.0,
         Model::Phong(p) => phong_specular(p, n, l, v, s),
@@ -320,7 +318,7 @@ pub(crate) fn model_specular(m: &Model, n: DVec3, l: DVec3, v: DVec3, s: f64) ->
 }
 
 /// `x^s` as each [`PowStrategy`] promises it: the same function, `lobe_pow`.
-pub(crate) fn pow_strategy(_p: PowStrategy, x: f64, s: f64) -> f64 {
+pub fn pow_strategy(_p: PowStrategy, x: f64, s: f64) -> f64 {
     lobe_pow(x, s)
 }
 
@@ -329,21 +327,26 @@ pub(crate) fn pow_strategy(_p: PowStrategy, x: f64, s: f64) -> f64 {
 
 /// The four terms of [`phong::shade`], in `f64`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Terms {
+pub struct Terms {
+    /// The ambient term.
     pub ambient: DVec3,
+    /// The diffuse term.
     pub diffuse: DVec3,
+    /// The specular term.
     pub specular: DVec3,
+    /// The material's emission.
     pub emission: DVec3,
 }
 
 impl Terms {
-    pub(crate) fn total(&self) -> DVec3 {
+    /// The sum of the four terms.
+    pub fn total(&self) -> DVec3 {
         self.ambient + self.diffuse + self.specular + self.emission
     }
 }
 
 /// What a light delivers at `p`: the direction to it and attenuation × spot factor.
-pub(crate) fn light_sample(light: &Light, p: DVec3) -> (DVec3, f64) {
+pub fn light_sample(light: &Light, p: DVec3) -> (DVec3, f64) {
     match light {
         Light::Directional(l) => (d3(l.direction()), 1.0),
         Light::Point(l) => {
@@ -375,7 +378,7 @@ pub(crate) fn light_sample(light: &Light, p: DVec3) -> (DVec3, f64) {
 /// One point shaded under `lights`: the Phong-family equation with the crate's conventions (a zero
 /// normal gets ambient and emission only; a viewer at the point gets no specular; a light at the
 /// point adds only its ambient part).
-pub(crate) fn shade(
+pub fn shade(
     model: &Model,
     material: &Material,
     lights: &[Light],
@@ -423,7 +426,7 @@ pub(crate) fn shade(
 // Colour
 
 /// Linear → sRGB (IEC 61966-2-1); NaN gives 0.
-pub(crate) fn srgb_encode(x: f64) -> f64 {
+pub fn srgb_encode(x: f64) -> f64 {
     if x.is_nan() {
         0.0
     } else if x <= 0.003_130_8 {
@@ -434,7 +437,7 @@ pub(crate) fn srgb_encode(x: f64) -> f64 {
 }
 
 /// sRGB → linear; NaN gives 0.
-pub(crate) fn srgb_decode(y: f64) -> f64 {
+pub fn srgb_decode(y: f64) -> f64 {
     if y.is_nan() {
         0.0
     } else if y <= 0.040_45 {
@@ -445,25 +448,25 @@ pub(crate) fn srgb_decode(y: f64) -> f64 {
 }
 
 /// `max(x, 0)^(1/γ)`; `γ ≤ 0` leaves `max(x, 0)` unchanged.
-pub(crate) fn gamma_encode(x: f64, gamma: f64) -> f64 {
+pub fn gamma_encode(x: f64, gamma: f64) -> f64 {
     let x = if x > 0.0 { x } else { 0.0 };
     if gamma > 0.0 { x.powf(1.0 / gamma) } else { x }
 }
 
 /// `max(y, 0)^γ`; `γ ≤ 0` leaves `max(y, 0)` unchanged.
-pub(crate) fn gamma_decode(y: f64, gamma: f64) -> f64 {
+pub fn gamma_decode(y: f64, gamma: f64) -> f64 {
     let y = if y > 0.0 { y } else { 0.0 };
     if gamma > 0.0 { y.powf(gamma) } else { y }
 }
 
 /// `⌊255·clamp(y, 0, 1) + 0.5⌋`; NaN gives 0.
-pub(crate) fn quantize_u8(y: f64) -> u8 {
+pub fn quantize_u8(y: f64) -> u8 {
     let y = if y.is_nan() { 0.0 } else { y.clamp(0.0, 1.0) };
     (255.0 * y + 0.5).floor() as u8
 }
 
 /// Linear RGB → 8-bit sRGB, per channel.
-pub(crate) fn linear_to_srgb8(c: DVec3) -> [u8; 3] {
+pub fn linear_to_srgb8(c: DVec3) -> [u8; 3] {
     [
         quantize_u8(srgb_encode(c.x)),
         quantize_u8(srgb_encode(c.y)),

@@ -5,7 +5,7 @@ use phong::{BlinnPhong, Lambert, Model, Normalization, Phong, PowStrategy, Specu
 
 /// Model `kind` (0: Lambert, 1: Phong, otherwise Blinn-Phong) with the given parts; Lambert
 /// takes the normalisation only.
-pub(crate) fn assemble(
+pub fn assemble(
     kind: usize,
     gate: SpecularGate,
     normalization: Normalization,

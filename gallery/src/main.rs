@@ -3,7 +3,7 @@
 //! drawn by this crate.
 //!
 //! ```text
-//! cargo run --release --example gallery [-- --model phong|blinn --shininess 32 --light x,y,z
+//! cargo run --release -p gallery [-- --model phong|blinn --shininess 32 --light x,y,z
 //!                                           --size 256 --out out/gallery]
 //! ```
 //!

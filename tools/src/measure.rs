@@ -1,10 +1,9 @@
 //! The error measurements behind docs/accuracy.md: every `f32` function of `phong` against the
 //! `f64` reference, on ordinary and adversarial input domains.
 //!
-//! `rows(n)` runs them all with `n` samples per row from fixed seeds. The accuracy example calls it
+//! `rows(n)` runs them all with `n` samples per row from fixed seeds. The `accuracy` tool calls it
 //! with a large `n` and writes the tables; tests/accuracy_bounds.rs calls it with a small `n` and
-//! asserts each row against a bound. Needs `crate::reference` and `crate::rng` next to it.
-#![allow(dead_code, reason = "each includer uses its own subset")]
+//! asserts each row against a bound.
 
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use phong::{
@@ -16,14 +15,13 @@ use phong::{
 use crate::reference as r;
 use crate::rng::Rng;
 
-#[path = "models.rs"]
-mod models;
+use crate::models;
 
 // ---------------------------------------------------------------------------------------------
 // Error statistics
 
 /// The spacing of `f32` values at `|x|` (the subnormal spacing below `f32::MIN_POSITIVE`).
-pub(crate) fn ulp_f32(x: f64) -> f64 {
+pub fn ulp_f32(x: f64) -> f64 {
     let a = (x.abs() as f32).max(f32::MIN_POSITIVE);
     if !a.is_finite() {
         return f64::from(f32::MAX) * f64::EPSILON; // beyond the range: the last spacing, 2^104
@@ -34,10 +32,14 @@ pub(crate) fn ulp_f32(x: f64) -> f64 {
 
 /// Maximum errors over a sample.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Stats {
+pub struct Stats {
+    /// Samples measured.
     pub n: usize,
+    /// The largest absolute error.
     pub max_abs: f64,
+    /// The largest relative error (against `max(|reference|, floor)`).
     pub max_rel: f64,
+    /// The largest error in `f32` ulps of the reference.
     pub max_ulp: f64,
     /// Outputs that were NaN or infinite where the reference is finite.
     pub non_finite: usize,
@@ -47,13 +49,7 @@ pub(crate) struct Stats {
 
 impl Stats {
     /// One scalar output. Relative error counts only where `|want| ≥ floor`.
-    pub(crate) fn scalar(
-        &mut self,
-        got: f32,
-        want: f64,
-        floor: f64,
-        input: impl FnOnce() -> String,
-    ) {
+    pub fn scalar(&mut self, got: f32, want: f64, floor: f64, input: impl FnOnce() -> String) {
         self.n += 1;
         if !got.is_finite() {
             if want.is_finite() {
@@ -84,13 +80,7 @@ impl Stats {
 
     /// One vector output: abs = largest component error, rel = ‖got − want‖/‖want‖ (where
     /// `‖want‖ ≥ floor`), ulp = largest component error in ulps of the largest component of `want`.
-    pub(crate) fn vector(
-        &mut self,
-        got: Vec3,
-        want: DVec3,
-        floor: f64,
-        input: impl FnOnce() -> String,
-    ) {
+    pub fn vector(&mut self, got: Vec3, want: DVec3, floor: f64, input: impl FnOnce() -> String) {
         self.n += 1;
         if !got.is_finite() {
             if want.is_finite() {
@@ -122,13 +112,7 @@ impl Stats {
 
     /// One matrix output, by its columns (as [`vector`](Self::vector) on the stacked columns,
     /// relative to the largest entry).
-    pub(crate) fn matrix(
-        &mut self,
-        got: Mat3,
-        want: DMat3,
-        floor: f64,
-        input: impl FnOnce() -> String,
-    ) {
+    pub fn matrix(&mut self, got: Mat3, want: DMat3, floor: f64, input: impl FnOnce() -> String) {
         self.n += 1;
         if !got.is_finite() {
             self.non_finite += 1;
@@ -152,7 +136,7 @@ impl Stats {
 
 /// One row of the accuracy tables.
 #[derive(Clone, Debug)]
-pub(crate) struct Row {
+pub struct Row {
     /// The function (or group) measured.
     pub function: &'static str,
     /// `"ordinary"` or `"adversarial"`.
@@ -163,12 +147,13 @@ pub(crate) struct Row {
     pub ulps: bool,
     /// The relative-error floor: outputs with a smaller reference are judged by absolute error.
     pub floor: f64,
+    /// The measured errors.
     pub stats: Stats,
 }
 
 impl Row {
     /// The stable key the bounds test uses: `function | domain`.
-    pub(crate) fn key(&self) -> String {
+    pub fn key(&self) -> String {
         format!("{} | {}", self.function, self.domain)
     }
 }
@@ -200,7 +185,7 @@ fn row(
 /// given `f32` vectors (three products and two sums, each rounded once; both vectors unit to
 /// within a few `2⁻²⁴`), so `4·2⁻²⁴ = 2⁻²²` covers it with margin. Farther from the edge the
 /// crate's decision must be the exact one.
-pub(crate) const SPOT_EDGE_BAND: f64 = 1.0 / 4_194_304.0;
+pub const SPOT_EDGE_BAND: f64 = 1.0 / 4_194_304.0;
 
 // ---------------------------------------------------------------------------------------------
 // Inputs
@@ -307,13 +292,20 @@ fn colour(rng: &mut Rng, hi: f64) -> Vec3 {
 
 /// A scene as a renderer would set one up: 1–4 lights (directional, point, spot) a few units from
 /// a point in the unit cube, a viewer 2–10 units away, plastic-like materials, s in [1, 256].
-pub(crate) struct ShadeCase {
+pub struct ShadeCase {
+    /// The reflection model.
     pub model: Model,
+    /// The surface's material.
     pub material: Material,
+    /// The lights.
     pub lights: Vec<Light>,
+    /// The scene's ambient light.
     pub ambient: Vec3,
+    /// Where the viewer is.
     pub viewer: Viewer,
+    /// The shaded point.
     pub position: Vec3,
+    /// The surface normal there (unit).
     pub normal: Vec3,
 }
 
@@ -339,7 +331,8 @@ fn light(rng: &mut Rng, p: Vec3, dist: f64, shininess_wide: bool) -> Light {
     }
 }
 
-pub(crate) fn typical_scene(rng: &mut Rng) -> ShadeCase {
+/// An ordinary scene: a point in the unit cube, lights a few units away (see [`ShadeCase`]).
+pub fn typical_scene(rng: &mut Rng) -> ShadeCase {
     let position = Vec3::new(
         rng.range(-1.0, 1.0) as f32,
         rng.range(-1.0, 1.0) as f32,
@@ -371,7 +364,7 @@ pub(crate) fn typical_scene(rng: &mut Rng) -> ShadeCase {
 
 /// Hard scenes: grazing normals, lights from 1e-6 to 1e6 away, far and near viewers, s in
 /// [0, 10⁴], positions up to 1e4 from the origin.
-pub(crate) fn hard_scene(rng: &mut Rng) -> ShadeCase {
+pub fn hard_scene(rng: &mut Rng) -> ShadeCase {
     let position = (rng.log_range(1e-3, 1e4) * rng.unit_dvec3()).as_vec3();
     let lights: Vec<Light> = (0..1 + rng.below(4))
         .map(|_| {
@@ -416,7 +409,7 @@ pub(crate) fn hard_scene(rng: &mut Rng) -> ShadeCase {
 }
 
 /// The shading result of the crate and of the reference.
-pub(crate) fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
+pub fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
     let scene = phong::Scene {
         lights: &c.lights,
         ambient: c.ambient,
@@ -438,8 +431,10 @@ pub(crate) fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
 
 /// Shading error with the 8-bit sRGB comparison.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct ShadeStats {
+pub struct ShadeStats {
+    /// The linear colour's errors.
     pub stats: Stats,
+    /// Channels compared (three per sample).
     pub channels: usize,
     /// Channels whose 8-bit sRGB value differs from the reference's.
     pub srgb8_differ: usize,
@@ -448,12 +443,15 @@ pub(crate) struct ShadeStats {
 }
 
 impl ShadeStats {
-    pub(crate) fn fraction(&self) -> f64 {
+    /// The fraction of channels whose 8-bit value differs.
+    pub fn fraction(&self) -> f64 {
         self.srgb8_differ as f64 / self.channels.max(1) as f64
     }
 }
 
-pub(crate) fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
+/// Shades `n` scenes (ordinary, or [`hard_scene`]s when `hard`) from `seed` with `phong` and
+/// with the reference, and measures the difference.
+pub fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
     let mut rng = Rng::new(seed);
     let mut s = ShadeStats::default();
     for _ in 0..n {
@@ -483,7 +481,7 @@ pub(crate) fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
 // The rows
 
 /// Every row, `n` samples each, from fixed seeds (a row's seed does not depend on `n`).
-pub(crate) fn rows(n: usize) -> Vec<Row> {
+pub fn rows(n: usize) -> Vec<Row> {
     let mut out = Vec::new();
     geometry(n, &mut out);
     attenuation(n, &mut out);
@@ -1187,7 +1185,7 @@ fn colour_rows(n: usize, out: &mut Vec<Row>) {
 /// Phong's lobe `cos(θ)^s` against Blinn-Phong's `cos(θ/2)^(4s)` with `V` turned from `R` by `θ`
 /// in the plane of incidence (where `angle(N, H) = θ/2` exactly): the largest absolute
 /// difference over `θ ∈ [0, π/2]`, in `f64`, and the second-order prediction `e⁻²/s`.
-pub(crate) fn four_times_rule_in_plane(s: f64) -> (f64, f64) {
+pub fn four_times_rule_in_plane(s: f64) -> (f64, f64) {
     let mut worst: f64 = 0.0;
     let steps = 20_000;
     for i in 0..=steps {
@@ -1201,7 +1199,7 @@ pub(crate) fn four_times_rule_in_plane(s: f64) -> (f64, f64) {
 
 /// The same comparison with the crate's own `f32` lobes on actual vectors: `L` at incidence
 /// `theta_i`, `V` turned from `R` by `θ` in the plane of incidence.
-pub(crate) fn four_times_rule_crate(s: f32, theta_i: f64) -> f64 {
+pub fn four_times_rule_crate(s: f32, theta_i: f64) -> f64 {
     let n = Vec3::Z;
     let l = DVec3::new(theta_i.sin(), 0.0, theta_i.cos());
     let mut worst: f64 = 0.0;
@@ -1222,7 +1220,7 @@ pub(crate) fn four_times_rule_crate(s: f32, theta_i: f64) -> f64 {
 /// The exponent ratio `s_Blinn / s_Phong` that makes both lobes fall to one half at the same
 /// deviation `δ` of `V` from `R`, for `L` at incidence `theta_i`, with `V` turned in the plane of
 /// incidence (`in_plane`) or perpendicular to it. Second order predicts 4 and `4 cos²θi`.
-pub(crate) fn matching_ratio(s: f64, theta_i: f64, in_plane: bool) -> f64 {
+pub fn matching_ratio(s: f64, theta_i: f64, in_plane: bool) -> f64 {
     let n = DVec3::Z;
     let l = DVec3::new(theta_i.sin(), 0.0, theta_i.cos());
     let rr = r::reflect(n, l);
