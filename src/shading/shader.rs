@@ -187,11 +187,8 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     diffuse: light.colors().diffuse(),
                     specular: light.colors().specular(),
                     sums_below: resolved.is_some_and(|r| {
-                        let quarter = 0.25 * math::MAX;
                         !r.normalization.is_normalized()
-                            && bounds[0].max_element() < quarter
-                            && (r.diffuse(1.0) * bounds[1]).max_element() < quarter
-                            && bounds[2].max_element() < quarter
+                            && scaled_sums(r, &bounds, 1.0).into_iter().all(below_quarter)
                     }),
                 }),
                 _ => None,
@@ -231,14 +228,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let safe = (shared || self.one.is_none())
             && self.resolved.is_some_and(|r| {
                 // The sums themselves (before the reflectances scale them), then the total.
-                let sums = [
-                    self.bounds[0],
-                    r.diffuse(1.0) * self.bounds[1],
-                    specular.scale * self.bounds[2],
-                ];
+                let sums = scaled_sums(r, &self.bounds, specular.scale);
                 let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + self.emission;
-                let quarter = 0.25 * math::MAX;
-                sums.iter().all(|x| x.max_element() < quarter) && most.max_element() < quarter
+                sums.into_iter().all(below_quarter) && below_quarter(most)
             });
         Prepared {
             ka,
@@ -791,6 +783,21 @@ fn n_dot_h_squared(n: Vec3, l: Vec3, v: Vec3) -> f32 {
     let d = sum.length_squared();
     let q = math::min_or(t * t / math::max_or(d, f32::MIN_POSITIVE), 1.0);
     if d >= f32::MIN_POSITIVE { q } else { 0.0 }
+}
+
+/// The bounds of a light's three sums after the model's scales, `[A, d·D, k·S]`: `A`, `D`, `S`
+/// the ambient, diffuse and specular sums' bounds, `d` the model's diffuse scale and `k` the
+/// specular scale (`1` where the model does not normalise). What [`Shader::prepare`]'s `safe`
+/// and [`OneLight::sums_below`] test against [`below_quarter`].
+fn scaled_sums(r: ResolvedModel, bounds: &[Vec3; 3], k: f32) -> [Vec3; 3] {
+    [bounds[0], r.diffuse(1.0) * bounds[1], k * bounds[2]]
+}
+
+/// Whether every channel of `v` is below `f32::MAX / 4`: the headroom under which the sums,
+/// scaled by reflectances of at most 1 per lobe and gate (plus a few ulps) and visibilities of at
+/// most 1, cannot overflow. `+∞` fails it.
+fn below_quarter(v: Vec3) -> bool {
+    v.max_element() < 0.25 * math::MAX
 }
 
 /// The specular constants for shininess `s`: from the resolved model, or unused (custom models
