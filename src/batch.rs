@@ -131,6 +131,13 @@
 //! for the kernel, so the results are [`shade_batch`]'s, bit for bit, without a copy of the
 //! caller's arrays.
 //!
+//! ## One preparation, many calls
+//!
+//! Each free function prepares its model, material and scene for the kernel on every call. A
+//! [`BatchShader`] holds that preparation, with the level, for as many calls as a renderer makes
+//! (a frame's rows or tiles, one part per thread); its methods are the free functions without
+//! their first three arguments, with the same results, bit for bit.
+//!
 //! ## Many cores
 //!
 //! Every point is shaded from its own inputs and the call's constants alone, so a batch split
@@ -144,7 +151,7 @@
 //!
 //! ```
 //! use glam::Vec3;
-//! use phong::{DirectionalLight, LightColors, Material, Phong, Scene, SoaRgb, SoaVec3, Viewer};
+//! use phong::{BatchShader, DirectionalLight, LightColors, Material, Phong, Scene, SoaRgb, SoaVec3, Viewer};
 //!
 //! let sun = DirectionalLight::try_new(Vec3::ONE, LightColors::try_new(Vec3::splat(0.1), Vec3::ONE, Vec3::ONE)?)?;
 //! let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
@@ -155,7 +162,9 @@
 //! let nn: [Vec<f32>; 3] = [(0..n).map(|i| (i as f32).sin()).collect(), vec![0.5; n], vec![1.0; n]];
 //! let (mut r, mut g, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
 //!
-//! // One part per thread, cut at the same indices in every slice.
+//! // Prepared once, shared by every thread; one part per thread, cut at the same indices in
+//! // every slice.
+//! let shader = BatchShader::new(&model, &material, &scene);
 //! let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
 //! let part = n.div_ceil(threads);
 //! std::thread::scope(|s| {
@@ -164,10 +173,8 @@
 //!         let (lo, hi) = (k * part, (k * part + part).min(n));
 //!         let positions = SoaVec3::new(&p[0][lo..hi], &p[1][lo..hi], &p[2][lo..hi]);
 //!         let normals = SoaVec3::new(&nn[0][lo..hi], &nn[1][lo..hi], &nn[2][lo..hi]);
-//!         let (model, material, scene) = (&model, &material, &scene);
-//!         s.spawn(move || {
-//!             phong::shade_batch(model, material, scene, positions, normals, SoaRgb::new(r, g, b));
-//!         });
+//!         let shader = &shader;
+//!         s.spawn(move || shader.shade(positions, normals, SoaRgb::new(r, g, b)));
 //!     }
 //! });
 //! let one = phong::shade(&model, &material, &scene, Vec3::ZERO, Vec3::new(nn[0][7], 0.5, 1.0));
@@ -176,6 +183,7 @@
 //! ```
 
 mod aos;
+mod batch_shader;
 mod dispatch;
 mod gbuffer;
 mod kernel;
@@ -188,6 +196,7 @@ mod srgb8_lanes;
 mod tiled;
 
 pub use aos::AosVec3;
+pub use batch_shader::BatchShader;
 pub use gbuffer::{
     GBuffer, SoaSurface, shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level,
     shade_gbuffer_terms, shade_gbuffer_terms_with_level, shade_gbuffer_with_level,
@@ -202,7 +211,6 @@ use glam::Vec3;
 
 use crate::material::Material;
 use crate::shade::Scene;
-use sink::{Pixels8, Sink};
 
 /// Shades every point of a structure-of-arrays batch: `out[i] = shade(…, p[i], n[i]).total()`.
 ///
@@ -260,15 +268,7 @@ pub fn shade_batch<M: BatchModel, L: BatchLight>(
     normals: SoaVec3<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run(
-        Level::detect(),
-        model,
-        material,
-        scene,
-        positions,
-        normals,
-        out,
-    )
+    BatchShader::new(model, material, scene).shade(positions, normals, out)
 }
 
 /// [`shade_batch`] at a chosen instruction-set [`Level`].
@@ -292,10 +292,7 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
     normals: SoaVec3<'_>,
     out: SoaRgb<'_>,
 ) -> Result<usize, UnsupportedLevel> {
-    if !level.is_supported() {
-        return Err(UnsupportedLevel(level));
-    }
-    Ok(run(level, model, material, scene, positions, normals, out))
+    Ok(BatchShader::with_level(level, model, material, scene)?.shade(positions, normals, out))
 }
 
 /// Shades a batch straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
@@ -348,9 +345,7 @@ pub fn shade_batch_rgba8<M: BatchModel, L: BatchLight>(
     normals: SoaVec3<'_>,
     out: &mut [[u8; 4]],
 ) -> usize {
-    let level = Level::detect();
-    let shading = Shading::new(level, model, material, scene);
-    pixels(&shading, positions, normals, Pixels8::Rgba(out))
+    BatchShader::new(model, material, scene).shade_rgba8(positions, normals, out)
 }
 
 /// Shades a batch straight into a `0x00RRGGBB` frame (the `u32` pixels that minifb and
@@ -387,9 +382,7 @@ pub fn shade_batch_xrgb8<M: BatchModel, L: BatchLight>(
     normals: SoaVec3<'_>,
     out: &mut [u32],
 ) -> usize {
-    let level = Level::detect();
-    let shading = Shading::new(level, model, material, scene);
-    pixels(&shading, positions, normals, Pixels8::Xrgb(out))
+    BatchShader::new(model, material, scene).shade_xrgb8(positions, normals, out)
 }
 
 /// [`shade_batch_rgba8`] at a chosen [`Level`], for tests and measurements: the same pixels as
@@ -418,11 +411,10 @@ pub fn shade_batch_rgba8_with_level<M: BatchModel, L: BatchLight>(
     normals: SoaVec3<'_>,
     out: &mut [[u8; 4]],
 ) -> Result<usize, UnsupportedLevel> {
-    if !level.is_supported() {
-        return Err(UnsupportedLevel(level));
-    }
-    let shading = Shading::new(level, model, material, scene);
-    Ok(pixels(&shading, positions, normals, Pixels8::Rgba(out)))
+    Ok(
+        BatchShader::with_level(level, model, material, scene)?
+            .shade_rgba8(positions, normals, out),
+    )
 }
 
 /// Shades array-of-structs input, the layout a G-buffer or a mesh keeps: `out[i] = shade(…,
@@ -464,13 +456,7 @@ pub fn shade_batch_aos<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec3>(
     normals: &[N],
     out: &mut [Vec3],
 ) -> usize {
-    let shading = Shading::new(Level::detect(), model, material, scene);
-    chunked_aos(positions, normals, out, |pos, nor, out, [r, g, b]| {
-        shading.shade(pos, nor, SoaRgb::new(r, g, b));
-        for (j, o) in out.iter_mut().enumerate() {
-            *o = Vec3::new(r[j], g[j], b[j]);
-        }
-    })
+    BatchShader::new(model, material, scene).shade_aos(positions, normals, out)
 }
 
 /// [`shade_batch_aos`] into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` as
@@ -487,11 +473,7 @@ pub fn shade_batch_aos_rgba8<M: BatchModel, L: BatchLight, P: AosVec3, N: AosVec
     normals: &[N],
     out: &mut [[u8; 4]],
 ) -> usize {
-    let shading = Shading::new(Level::detect(), model, material, scene);
-    chunked_aos(positions, normals, out, |pos, nor, out, _| {
-        let inputs = kernel::PointInputs::default();
-        shading.shade_inputs(pos, nor, &inputs, Pixels8::Rgba(out));
-    })
+    BatchShader::new(model, material, scene).shade_aos_rgba8(positions, normals, out)
 }
 
 /// Points per chunk of the array-of-structs entry points: a multiple of the kernel's 16 lanes, so
@@ -536,27 +518,6 @@ fn chunked_aos<P: AosVec3, N: AosVec3, T>(
     n
 }
 
-/// Shades the first `min(len, out.len())` points into an 8-bit frame, encoded in the kernel's
-/// lanes; returns the count.
-fn pixels<M: BatchModel, L: BatchLight>(
-    shading: &Shading<'_, '_, M, L>,
-    positions: SoaVec3<'_>,
-    normals: SoaVec3<'_>,
-    mut out: Pixels8<'_>,
-) -> usize {
-    debug_assert!(
-        same_lengths(positions, normals, out.len()),
-        "shade_batch_*8: the six input slices and the output must have the same length"
-    );
-    let n = positions.len().min(normals.len()).min(out.len());
-    shading.shade_inputs(
-        positions.range(0..n),
-        normals.range(0..n),
-        &kernel::PointInputs::default(),
-        out.part(0..n),
-    )
-}
-
 /// The maximal runs of `true` in `coverage`, as index ranges, in order.
 fn covered_runs(coverage: &[bool]) -> impl Iterator<Item = core::ops::Range<usize>> + '_ {
     let mut i = 0;
@@ -569,24 +530,6 @@ fn covered_runs(coverage: &[bool]) -> impl Iterator<Item = core::ops::Range<usiz
         i = end;
         Some(start..end)
     })
-}
-
-fn run<M: BatchModel, L: BatchLight>(
-    level: Level,
-    model: &M,
-    material: &Material,
-    scene: &Scene<'_, L>,
-    positions: SoaVec3<'_>,
-    normals: SoaVec3<'_>,
-    out: SoaRgb<'_>,
-) -> usize {
-    debug_assert!(
-        same_lengths(positions, normals, out.r.len())
-            && out.g.len() == out.r.len()
-            && out.b.len() == out.r.len(),
-        "shade_batch: the nine slices must have the same length"
-    );
-    Shading::new(level, model, material, scene).shade(positions, normals, out)
 }
 
 /// Whether the six input slices and an output of `out_len` have one length.
@@ -602,141 +545,4 @@ fn same_lengths(positions: SoaVec3<'_>, normals: SoaVec3<'_>, out_len: usize) ->
     ]
     .iter()
     .all(|&m| m == n)
-}
-
-/// A call's shading, chosen once: the vector kernel at `level` when it handles every light of the
-/// scene, else [`scalar`].
-struct Shading<'a, 's, M, L> {
-    level: Level,
-    model: &'a M,
-    material: &'a Material,
-    scene: &'a Scene<'s, L>,
-    kernel: Option<kernel::Setup<'a>>,
-}
-
-impl<'a, 's, M: BatchModel, L: BatchLight> Shading<'a, 's, M, L> {
-    fn new(level: Level, model: &'a M, material: &'a Material, scene: &'a Scene<'s, L>) -> Self {
-        let kernel = scene
-            .lights
-            .iter()
-            .all(|l| l.lane_light().is_some())
-            .then(|| kernel::Setup::new(model, material, scene));
-        Shading {
-            level,
-            model,
-            material,
-            scene,
-            kernel,
-        }
-    }
-
-    /// [`new`](Self::new) for a call with per-point `inputs`: the kernel also needs `Auto` for a
-    /// per-point shininess (it runs no other pow plan per lane).
-    fn with_inputs(
-        level: Level,
-        model: &'a M,
-        material: &'a Material,
-        scene: &'a Scene<'s, L>,
-        inputs: &kernel::PointInputs<'_>,
-    ) -> Self {
-        let mut shading = Shading::new(level, model, material, scene);
-        if let Some(k) = &shading.kernel {
-            let per_lane_pow =
-                k.lm.pow == crate::PowStrategy::Auto || k.lm.lobe == prepare::Lobe::None;
-            if inputs.per_point_surface() && !per_lane_pow {
-                shading.kernel = None;
-            }
-        }
-        shading
-    }
-
-    /// Shades the common prefix of the slices; returns its length.
-    fn shade(&self, pos: SoaVec3<'_>, nor: SoaVec3<'_>, out: SoaRgb<'_>) -> usize {
-        self.shade_inputs(pos, nor, &kernel::PointInputs::default(), out)
-    }
-
-    /// Points `run` of the slices and of `inputs`, into the same points of `out` (the others
-    /// untouched); returns the run's length.
-    fn shade_range<O: Sink>(
-        &self,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &kernel::PointInputs<'_>,
-        out: &mut O,
-        run: core::ops::Range<usize>,
-    ) -> usize {
-        self.shade_inputs(
-            pos.range(run.clone()),
-            nor.range(run.clone()),
-            &inputs.from(run.start),
-            out.part(run),
-        )
-    }
-
-    /// [`shade`](Self::shade) with per-point inputs over at least as many points.
-    fn shade_inputs<O: Sink>(
-        &self,
-        pos: SoaVec3<'_>,
-        nor: SoaVec3<'_>,
-        inputs: &kernel::PointInputs<'_>,
-        out: O,
-    ) -> usize {
-        match &self.kernel {
-            Some(k) => {
-                let call = kernel::CallOf {
-                    model: self.model,
-                    material: self.material,
-                    scene: self.scene,
-                };
-                let job = kernel::Job {
-                    setup: k,
-                    call: &call,
-                    pos,
-                    nor,
-                    inputs,
-                    out,
-                };
-                dispatch::run_level(self.level, job)
-            }
-            None => scalar(self.model, self.material, self.scene, pos, nor, inputs, out),
-        }
-    }
-}
-
-/// Point by point with [`shade`](crate::shade) (with per-point inputs, a [`Shader`]'s
-/// `shade_surface`), for scenes the kernel does not handle.
-///
-/// [`Shader`]: crate::Shader
-fn scalar<M: BatchModel, L: BatchLight, O: Sink>(
-    model: &M,
-    material: &Material,
-    scene: &Scene<'_, L>,
-    pos: SoaVec3<'_>,
-    nor: SoaVec3<'_>,
-    inputs: &kernel::PointInputs<'_>,
-    mut out: O,
-) -> usize {
-    let n = pos.len().min(nor.len()).min(out.len());
-    let shader = crate::Shader::new(model, material, scene);
-    for i in 0..n {
-        let (p, q) = (
-            Vec3::new(pos.x[i], pos.y[i], pos.z[i]),
-            Vec3::new(nor.x[i], nor.y[i], nor.z[i]),
-        );
-        let c = match (inputs.surface(i, 1), inputs.visibility) {
-            (None, None) => crate::shade(model, material, scene, p, q),
-            (surface, _) => {
-                let surface = surface.map_or(crate::Surface::of(material), |s| crate::Surface {
-                    ambient: Vec3::new(s[0][0], s[1][0], s[2][0]),
-                    diffuse: Vec3::new(s[3][0], s[4][0], s[5][0]),
-                    specular: Vec3::new(s[6][0], s[7][0], s[8][0]),
-                    shininess: s[9][0],
-                });
-                let vis = crate::VisibilityFn(|j| inputs.visibility(j, i, 1)[0]);
-                shader.shade_surface(p, q, &surface, vis)
-            }
-        };
-        out.put(i, &c);
-    }
-    n
 }

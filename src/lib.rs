@@ -128,8 +128,8 @@ use surfaces::{material, surface};
 
 pub use attenuation::Attenuation;
 pub use batch::{
-    AosVec3, BatchLight, BatchModel, GBuffer, Level, SoaRgb, SoaSurface, SoaTerms, SoaVec3,
-    TileCulling, UnsupportedLevel, shade_batch, shade_batch_aos, shade_batch_aos_rgba8,
+    AosVec3, BatchLight, BatchModel, BatchShader, GBuffer, Level, SoaRgb, SoaSurface, SoaTerms,
+    SoaVec3, TileCulling, UnsupportedLevel, shade_batch, shade_batch_aos, shade_batch_aos_rgba8,
     shade_batch_rgba8, shade_batch_rgba8_with_level, shade_batch_with_level, shade_batch_xrgb8,
     shade_gbuffer, shade_gbuffer_rgba8, shade_gbuffer_rgba8_with_level, shade_gbuffer_terms,
     shade_gbuffer_terms_with_level, shade_gbuffer_tiled, shade_gbuffer_tiled_with_level,

@@ -1258,3 +1258,106 @@ fn array_of_structs_input_gives_the_soa_results() {
         assert_eq!(rgba4, rgba);
     }
 }
+
+/// One `BatchShader`, prepared once and used for many calls (a frame's rows, here 64-point parts:
+/// whole groups of 16 lanes, as each call's points are grouped), gives the free functions'
+/// results bit for bit at every level, for every output form, with a scene the kernel takes and
+/// one it sends point by point.
+#[test]
+fn a_prepared_batch_shader_gives_the_free_functions_results() {
+    let mut rng = Rng::new(10);
+    let light_at = Vec3::new(0.7, 1.5, 2.0);
+    let eye = Vec3::new(0.0, 0.5, 3.5);
+    let b = random_then_adversarial(&mut rng, 64 * 9 + 21, light_at, eye);
+    let s = b.soa();
+    let len = b.p.len();
+    let m = Material::try_new(Vec3::splat(0.1), Vec3::new(0.7, 0.4, 0.9), Vec3::ONE, 20.5).unwrap();
+    let model = BlinnPhong::default();
+    let kernel_lights: Vec<Light> = vec![point_light(&mut rng, light_at).into()];
+    let mut scalar_lights = kernel_lights.clone();
+    scalar_lights.push(
+        PointLight::try_new(eye, Attenuation::try_unreal(6.0).unwrap(), colors(&mut rng))
+            .unwrap()
+            .into(),
+    );
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    for lights in [&kernel_lights, &scalar_lights] {
+        let scene = Scene {
+            lights,
+            ambient: Vec3::splat(0.03),
+            viewer: Viewer::At(eye),
+        };
+        for level in Level::supported() {
+            let shader = phong::BatchShader::with_level(level, &model, &m, &scene)
+                .expect("level reported as supported");
+            assert_eq!(shader.level(), level);
+            let want = run(level, &model, &m, &scene, &b);
+            let (mut r, mut g, mut bl) = (vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]);
+            let mut rgba = vec![[7u8; 4]; len];
+            let mut xrgb = vec![7u32; len];
+            let mut start = 0;
+            while start < len {
+                let end = (start + 64).min(len);
+                let part = |k: usize| &s[k][start..end];
+                let positions = SoaVec3::new(part(0), part(1), part(2));
+                let normals = SoaVec3::new(part(3), part(4), part(5));
+                let out = SoaRgb::new(&mut r[start..end], &mut g[start..end], &mut bl[start..end]);
+                assert_eq!(shader.shade(positions, normals, out), end - start);
+                let count = shader.shade_rgba8(positions, normals, &mut rgba[start..end]);
+                assert_eq!(count, end - start);
+                let count = shader.shade_xrgb8(positions, normals, &mut xrgb[start..end]);
+                assert_eq!(count, end - start);
+                start = end;
+            }
+            let mut aos = vec![Vec3::NAN; len];
+            assert_eq!(shader.shade_aos(&b.p, &b.n, &mut aos), len);
+            let mut aos_rgba = vec![[0u8; 4]; len];
+            assert_eq!(shader.shade_aos_rgba8(&b.p, &b.n, &mut aos_rgba), len);
+            // A G-buffer of the same points with every third pixel uncovered: the free
+            // functions' colours on the covered ones, the others keep what they had.
+            let coverage: Vec<bool> = (0..len).map(|i| i % 3 != 0).collect();
+            let gbuffer = phong::GBuffer::new(
+                SoaVec3::new(&s[0], &s[1], &s[2]),
+                SoaVec3::new(&s[3], &s[4], &s[5]),
+            )
+            .with_coverage(&coverage);
+            let (mut gr, mut gg, mut gb) = (vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]);
+            let gout = SoaRgb::new(&mut gr, &mut gg, &mut gb);
+            assert_eq!(shader.shade_gbuffer(&gbuffer, gout), len);
+            let (mut fr, mut fg, mut fb) = (vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]);
+            let fout = SoaRgb::new(&mut fr, &mut fg, &mut fb);
+            let n = phong::shade_gbuffer_with_level(level, &model, &m, &scene, &gbuffer, fout);
+            assert_eq!(n, Ok(len));
+            let mut g_rgba = vec![[7u8; 4]; len];
+            assert_eq!(shader.shade_gbuffer_rgba8(&gbuffer, &mut g_rgba), len);
+            let mut free_rgba = vec![[7u8; 4]; len];
+            let n = phong::shade_gbuffer_rgba8_with_level(
+                level,
+                &model,
+                &m,
+                &scene,
+                &gbuffer,
+                &mut free_rgba,
+            );
+            assert_eq!(n, Ok(len));
+            assert_eq!(g_rgba, free_rgba, "{level}: G-buffer RGBA8");
+            for i in 0..len {
+                let got = Vec3::new(r[i], g[i], bl[i]);
+                assert_eq!(bits(got), bits(want[i]), "{level}: point {i}");
+                assert_eq!(bits(aos[i]), bits(want[i]), "{level}: AoS point {i}");
+                let [cr, cg, cb] = phong::linear_to_srgb8(want[i]);
+                assert_eq!(rgba[i], [cr, cg, cb, 255], "{level}: RGBA8 point {i}");
+                assert_eq!(aos_rgba[i], rgba[i], "{level}: AoS RGBA8 point {i}");
+                let [cr, cg, cb] = [cr, cg, cb].map(u32::from);
+                assert_eq!(xrgb[i], cr << 16 | cg << 8 | cb, "{level}: XRGB8 point {i}");
+                let gcol = Vec3::new(gr[i], gg[i], gb[i]);
+                let free = Vec3::new(fr[i], fg[i], fb[i]);
+                assert_eq!(bits(gcol), bits(free), "{level}: G-buffer point {i}");
+                if !coverage[i] {
+                    assert_eq!(gcol, Vec3::splat(-1.0), "{level}: uncovered point {i}");
+                    assert_eq!(g_rgba[i], [7; 4], "{level}: uncovered pixel {i}");
+                }
+            }
+        }
+    }
+}

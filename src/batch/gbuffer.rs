@@ -1,12 +1,12 @@
 //! Deferred shading from a G-buffer: per-point surfaces and per-light shadows in the batch kernel.
 
+use super::batch_shader::BatchShader;
+use super::covered_runs;
 use super::kernel::PointInputs;
 use super::level::{Level, UnsupportedLevel};
 use super::prepare::{BatchLight, BatchModel};
-use super::sink::Pixels8;
 use super::sink::Sink;
 use super::soa::{SoaRgb, SoaTerms, SoaVec3};
-use super::{Shading, covered_runs};
 use crate::material::Material;
 use crate::shade::Scene;
 
@@ -294,7 +294,7 @@ pub fn shade_gbuffer<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: SoaRgb<'_>,
 ) -> usize {
-    run(Level::detect(), model, material, scene, gbuffer, out)
+    BatchShader::new(model, material, scene).shade_gbuffer(gbuffer, out)
 }
 
 /// [`shade_gbuffer`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -307,10 +307,7 @@ pub fn shade_gbuffer_with_level<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: SoaRgb<'_>,
 ) -> Result<usize, UnsupportedLevel> {
-    if !level.is_supported() {
-        return Err(UnsupportedLevel(level));
-    }
-    Ok(run(level, model, material, scene, gbuffer, out))
+    Ok(BatchShader::with_level(level, model, material, scene)?.shade_gbuffer(gbuffer, out))
 }
 
 /// [`shade_gbuffer`] straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
@@ -327,14 +324,7 @@ pub fn shade_gbuffer_rgba8<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [[u8; 4]],
 ) -> usize {
-    run(
-        Level::detect(),
-        model,
-        material,
-        scene,
-        gbuffer,
-        Pixels8::Rgba(out),
-    )
+    BatchShader::new(model, material, scene).shade_gbuffer_rgba8(gbuffer, out)
 }
 
 /// [`shade_gbuffer_rgba8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -347,17 +337,7 @@ pub fn shade_gbuffer_rgba8_with_level<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [[u8; 4]],
 ) -> Result<usize, UnsupportedLevel> {
-    if !level.is_supported() {
-        return Err(UnsupportedLevel(level));
-    }
-    Ok(run(
-        level,
-        model,
-        material,
-        scene,
-        gbuffer,
-        Pixels8::Rgba(out),
-    ))
+    Ok(BatchShader::with_level(level, model, material, scene)?.shade_gbuffer_rgba8(gbuffer, out))
 }
 
 /// [`shade_gbuffer`] straight into a `0x00RRGGBB` frame (what minifb and softbuffer take):
@@ -388,14 +368,7 @@ pub fn shade_gbuffer_xrgb8<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [u32],
 ) -> usize {
-    run(
-        Level::detect(),
-        model,
-        material,
-        scene,
-        gbuffer,
-        Pixels8::Xrgb(out),
-    )
+    BatchShader::new(model, material, scene).shade_gbuffer_xrgb8(gbuffer, out)
 }
 
 /// [`shade_gbuffer_xrgb8`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -408,17 +381,7 @@ pub fn shade_gbuffer_xrgb8_with_level<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: &mut [u32],
 ) -> Result<usize, UnsupportedLevel> {
-    if !level.is_supported() {
-        return Err(UnsupportedLevel(level));
-    }
-    Ok(run(
-        level,
-        model,
-        material,
-        scene,
-        gbuffer,
-        Pixels8::Xrgb(out),
-    ))
+    Ok(BatchShader::with_level(level, model, material, scene)?.shade_gbuffer_xrgb8(gbuffer, out))
 }
 
 /// [`shade_gbuffer`] writing each term apart: `out.ambient`, `out.diffuse` and `out.specular`
@@ -460,7 +423,7 @@ pub fn shade_gbuffer_terms<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: SoaTerms<'_>,
 ) -> usize {
-    run(Level::detect(), model, material, scene, gbuffer, out)
+    BatchShader::new(model, material, scene).shade_gbuffer_terms(gbuffer, out)
 }
 
 /// [`shade_gbuffer_terms`] at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] (nothing
@@ -473,33 +436,27 @@ pub fn shade_gbuffer_terms_with_level<M: BatchModel, L: BatchLight>(
     gbuffer: &GBuffer<'_>,
     out: SoaTerms<'_>,
 ) -> Result<usize, UnsupportedLevel> {
-    if !level.is_supported() {
-        return Err(UnsupportedLevel(level));
-    }
-    Ok(run(level, model, material, scene, gbuffer, out))
+    Ok(BatchShader::with_level(level, model, material, scene)?.shade_gbuffer_terms(gbuffer, out))
 }
 
+/// Shades `gbuffer` with `shader` into `out`: its covered runs only, when it has a coverage mask.
 pub(super) fn run<M: BatchModel, L: BatchLight, O: Sink>(
-    level: Level,
-    model: &M,
-    material: &Material,
-    scene: &Scene<'_, L>,
+    shader: &BatchShader<'_, '_, M, L>,
     gbuffer: &GBuffer<'_>,
     mut out: O,
 ) -> usize {
-    let (inputs, n) = gbuffer.inputs(scene.lights.len(), material);
+    let (inputs, n) = gbuffer.inputs(shader.scene.lights.len(), shader.material);
     debug_assert!(
         out.len() == n,
         "shade_gbuffer: the output must have the G-buffer's length"
     );
     let n = n.min(out.len());
-    let shading = Shading::with_inputs(level, model, material, scene, &inputs);
     let (pos, nor) = gbuffer.prefix(n);
     let Some(coverage) = gbuffer.coverage else {
-        return shading.shade_inputs(pos, nor, &inputs, out.part(0..n));
+        return shader.shade_inputs(pos, nor, &inputs, out.part(0..n));
     };
     for run in covered_runs(&coverage[..n]) {
-        shading.shade_range(pos, nor, &inputs, &mut out, run);
+        shader.shade_range(pos, nor, &inputs, &mut out, run);
     }
     n
 }

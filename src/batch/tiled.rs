@@ -2,11 +2,12 @@
 
 use glam::Vec3;
 
+use super::batch_shader::BatchShader;
+use super::covered_runs;
 use super::gbuffer::GBuffer;
 use super::level::{Level, UnsupportedLevel};
 use super::prepare::{BatchLight, BatchModel, LaneLight};
 use super::soa::SoaRgb;
-use super::{Shading, covered_runs};
 use crate::attenuation::Attenuation;
 use crate::material::Material;
 use crate::shade::Scene;
@@ -180,7 +181,8 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
         threshold,
     } = culling;
     if scratch.len() < lights || width == 0 || tile == 0 || gbuffer.visibility.is_some() {
-        return super::gbuffer::run(level, model, material, scene, gbuffer, out);
+        let shader = BatchShader::at(level, model, material, scene);
+        return super::gbuffer::run(&shader, gbuffer, out);
     }
     let (inputs, n) = gbuffer.inputs(lights, material);
     debug_assert!(
@@ -221,7 +223,7 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
                 lights: &scratch[..k],
                 ..*scene
             };
-            let shading = Shading::with_inputs(level, model, material, &tile_scene, &inputs);
+            let shading = BatchShader::at(level, model, material, &tile_scene);
             for span in spans {
                 match gbuffer.coverage {
                     Some(c) => {

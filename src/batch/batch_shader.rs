@@ -1,0 +1,352 @@
+//! The batch path's prepared form: a model, a material and a scene, reduced once for the kernel
+//! at one instruction-set level, shading any number of batches.
+
+use glam::Vec3;
+
+use super::aos::AosVec3;
+use super::gbuffer::{self, GBuffer};
+use super::kernel;
+use super::level::{Level, UnsupportedLevel};
+use super::prepare::{self, BatchLight, BatchModel};
+use super::sink::{Pixels8, Sink};
+use super::soa::{SoaRgb, SoaTerms, SoaVec3};
+use super::{chunked_aos, same_lengths};
+use crate::material::Material;
+use crate::shade::Scene;
+
+/// A model, a material and a scene prepared once for the batch kernel, at one instruction-set
+/// [`Level`]: the bundle every batch entry point takes, kept for as many calls as the caller
+/// likes (a frame's tiles or rows, one part per thread: it is `Send` and `Sync` when the model
+/// and lights are).
+///
+/// ```text
+/// I = Ke + Ka⊙(Ia + Σ f·La) + Σ f·visⱼ · ( Kd⊙Ld · diffuse(N·L) + Ks⊙Ls · gate(N·L) · lobe^s )
+/// ```
+///
+/// Each method is the free function of the same name without its first three arguments:
+/// [`shade`](Self::shade) is [`shade_batch`](crate::shade_batch),
+/// [`shade_gbuffer`](Self::shade_gbuffer) is [`shade_gbuffer`](crate::shade_gbuffer), and so on,
+/// with the same domain, results (bit for bit), degenerate answers and error (the module docs of
+/// `batch`). The free functions build one of these per call.
+///
+/// **Domain:** the model, material and scene of [`shade`](crate::shade); any finite positions
+/// and normals (normals need not be unit). **Degenerate input:** as [`shade`](crate::shade), per
+/// point; a scene whose lights the kernel cannot take (a light type from outside the crate) is
+/// shaded point by point, with the same results.
+///
+/// ```
+/// use glam::Vec3;
+/// use phong::{BatchShader, DirectionalLight, LightColors, Material, Phong, Scene, SoaRgb, SoaVec3, Viewer};
+///
+/// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO)?)?;
+/// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+/// let material = Material::try_from_color(Vec3::new(1.0, 0.5, 0.0), 32.0)?;
+/// let model = Phong::default();
+/// let shader = BatchShader::new(&model, &material, &scene);
+///
+/// // Two rows of a frame, one call each, one preparation.
+/// let zeros = [0.0; 2];
+/// let (nx, nz) = ([0.0, 1.0], [1.0, 0.0]); // facing the sun, side-on
+/// let mut frame = [0u32; 4];
+/// for row in frame.chunks_mut(2) {
+///     let n = shader.shade_xrgb8(SoaVec3::new(&zeros, &zeros, &zeros), SoaVec3::new(&nx, &zeros, &nz), row);
+///     assert_eq!(n, 2);
+/// }
+/// assert_eq!(frame, [0x00ff_bc00, 0, 0x00ff_bc00, 0]);
+///
+/// // The free function is the same call with the bundle unpacked.
+/// let (mut r, mut g, mut b) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+/// let (p, n) = (SoaVec3::new(&zeros, &zeros, &zeros), SoaVec3::new(&nx, &zeros, &nz));
+/// shader.shade(p, n, SoaRgb::new(&mut r, &mut g, &mut b));
+/// let (mut r2, mut g2, mut b2) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+/// phong::shade_batch(&model, &material, &scene, p, n, SoaRgb::new(&mut r2, &mut g2, &mut b2));
+/// assert_eq!((r, g, b), (r2, g2, b2));
+/// # Ok::<(), phong::PhongError>(())
+/// ```
+pub struct BatchShader<'a, 's, M, L> {
+    pub(super) level: Level,
+    pub(super) model: &'a M,
+    pub(super) material: &'a Material,
+    pub(super) scene: &'a Scene<'s, L>,
+    /// The kernel's constants, or `None` when some light is not a lane light (then every call is
+    /// shaded point by point).
+    kernel: Option<kernel::Setup<'a>>,
+}
+
+impl<M, L> core::fmt::Debug for BatchShader<'_, '_, M, L> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("BatchShader")
+            .field("level", &self.level)
+            .field("kernel", &self.kernel.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, 's, M: BatchModel, L: BatchLight> BatchShader<'a, 's, M, L> {
+    /// Prepares `model`, `material` and `scene` for the best [`Level`] this CPU runs
+    /// ([`Level::detect`]).
+    ///
+    /// **Cost:** the model's resolution and one reduction per light (colour products,
+    /// attenuation constants, the pow plan), the work each free function does per call.
+    pub fn new(model: &'a M, material: &'a Material, scene: &'a Scene<'s, L>) -> Self {
+        Self::at(Level::detect(), model, material, scene)
+    }
+
+    /// [`new`](Self::new) at a chosen instruction-set [`Level`]; [`UnsupportedLevel`] where this
+    /// CPU or build cannot run it: asking for a missing instruction set is an error, never
+    /// undefined behaviour.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{BatchShader, Lambert, Level, Material, PointLight, Scene, Viewer};
+    /// let scene = Scene::<PointLight> { lights: &[], ambient: Vec3::ZERO, viewer: Viewer::Infinite(Vec3::Z) };
+    /// let m = Material::try_from_color(Vec3::ONE, 8.0)?;
+    /// let model = Lambert::default();
+    /// let shader = BatchShader::with_level(Level::Portable, &model, &m, &scene);
+    /// assert_eq!(shader.map(|s| s.level()), Ok(Level::Portable));
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    pub fn with_level(
+        level: Level,
+        model: &'a M,
+        material: &'a Material,
+        scene: &'a Scene<'s, L>,
+    ) -> Result<Self, UnsupportedLevel> {
+        if !level.is_supported() {
+            return Err(UnsupportedLevel(level));
+        }
+        Ok(Self::at(level, model, material, scene))
+    }
+
+    /// The instruction-set level the calls run at.
+    pub fn level(&self) -> Level {
+        self.level
+    }
+
+    /// The shader at `level`, which the caller has checked is supported.
+    pub(super) fn at(
+        level: Level,
+        model: &'a M,
+        material: &'a Material,
+        scene: &'a Scene<'s, L>,
+    ) -> Self {
+        let kernel = scene
+            .lights
+            .iter()
+            .all(|l| l.lane_light().is_some())
+            .then(|| kernel::Setup::new(model, material, scene));
+        BatchShader {
+            level,
+            model,
+            material,
+            scene,
+            kernel,
+        }
+    }
+
+    /// [`shade_batch`](crate::shade_batch) with this bundle: `out[i] = shade(…, p[i],
+    /// n[i]).total()`; returns the number of points shaded, the shortest of the nine slices
+    /// (debug builds assert they are equal).
+    pub fn shade(&self, positions: SoaVec3<'_>, normals: SoaVec3<'_>, out: SoaRgb<'_>) -> usize {
+        debug_assert!(
+            same_lengths(positions, normals, out.r.len())
+                && out.g.len() == out.r.len()
+                && out.b.len() == out.r.len(),
+            "shade_batch: the nine slices must have the same length"
+        );
+        self.shade_inputs(positions, normals, &kernel::PointInputs::default(), out)
+    }
+
+    /// [`shade_batch_rgba8`](crate::shade_batch_rgba8) with this bundle: `out[i] = [r, g, b,
+    /// 255]`, `linear_to_srgb8` of [`shade`](Self::shade)'s colour, encoded in the kernel's lanes.
+    pub fn shade_rgba8(
+        &self,
+        positions: SoaVec3<'_>,
+        normals: SoaVec3<'_>,
+        out: &mut [[u8; 4]],
+    ) -> usize {
+        self.pixels(positions, normals, Pixels8::Rgba(out))
+    }
+
+    /// [`shade_batch_xrgb8`](crate::shade_batch_xrgb8) with this bundle: `out[i] = r << 16 |
+    /// g << 8 | b`, the levels of [`shade_rgba8`](Self::shade_rgba8), the top byte 0.
+    pub fn shade_xrgb8(
+        &self,
+        positions: SoaVec3<'_>,
+        normals: SoaVec3<'_>,
+        out: &mut [u32],
+    ) -> usize {
+        self.pixels(positions, normals, Pixels8::Xrgb(out))
+    }
+
+    /// [`shade_batch_aos`](crate::shade_batch_aos) with this bundle: array-of-structs positions
+    /// and normals ([`AosVec3`]), moved into structure-of-arrays form 1024 points at a time on
+    /// the stack (36 KiB).
+    pub fn shade_aos<P: AosVec3, N: AosVec3>(
+        &self,
+        positions: &[P],
+        normals: &[N],
+        out: &mut [Vec3],
+    ) -> usize {
+        chunked_aos(positions, normals, out, |pos, nor, out, [r, g, b]| {
+            self.shade_inputs(
+                pos,
+                nor,
+                &kernel::PointInputs::default(),
+                SoaRgb::new(r, g, b),
+            );
+            for (j, o) in out.iter_mut().enumerate() {
+                *o = Vec3::new(r[j], g[j], b[j]);
+            }
+        })
+    }
+
+    /// [`shade_batch_aos_rgba8`](crate::shade_batch_aos_rgba8) with this bundle:
+    /// [`shade_aos`](Self::shade_aos) into an 8-bit RGBA frame, as
+    /// [`shade_rgba8`](Self::shade_rgba8) encodes it.
+    pub fn shade_aos_rgba8<P: AosVec3, N: AosVec3>(
+        &self,
+        positions: &[P],
+        normals: &[N],
+        out: &mut [[u8; 4]],
+    ) -> usize {
+        chunked_aos(positions, normals, out, |pos, nor, out, _| {
+            let inputs = kernel::PointInputs::default();
+            self.shade_inputs(pos, nor, &inputs, Pixels8::Rgba(out));
+        })
+    }
+
+    /// [`shade_gbuffer`](crate::shade_gbuffer) with this bundle: per-point surfaces,
+    /// visibilities, 8-bit albedo and the coverage mask as the [`GBuffer`] holds them, into
+    /// linear `f32` colours.
+    pub fn shade_gbuffer(&self, gbuffer: &GBuffer<'_>, out: SoaRgb<'_>) -> usize {
+        gbuffer::run(self, gbuffer, out)
+    }
+
+    /// [`shade_gbuffer_rgba8`](crate::shade_gbuffer_rgba8) with this bundle: alpha 255 at every
+    /// shaded point; uncovered pixels keep all four bytes.
+    pub fn shade_gbuffer_rgba8(&self, gbuffer: &GBuffer<'_>, out: &mut [[u8; 4]]) -> usize {
+        gbuffer::run(self, gbuffer, Pixels8::Rgba(out))
+    }
+
+    /// [`shade_gbuffer_xrgb8`](crate::shade_gbuffer_xrgb8) with this bundle: `0x00RRGGBB`
+    /// pixels.
+    pub fn shade_gbuffer_xrgb8(&self, gbuffer: &GBuffer<'_>, out: &mut [u32]) -> usize {
+        gbuffer::run(self, gbuffer, Pixels8::Xrgb(out))
+    }
+
+    /// [`shade_gbuffer_terms`](crate::shade_gbuffer_terms) with this bundle: the ambient,
+    /// diffuse and specular terms apart.
+    pub fn shade_gbuffer_terms(&self, gbuffer: &GBuffer<'_>, out: SoaTerms<'_>) -> usize {
+        gbuffer::run(self, gbuffer, out)
+    }
+
+    /// Shades the first `min(len, out.len())` points into an 8-bit frame, encoded in the kernel's
+    /// lanes; returns the count.
+    fn pixels(&self, positions: SoaVec3<'_>, normals: SoaVec3<'_>, mut out: Pixels8<'_>) -> usize {
+        debug_assert!(
+            same_lengths(positions, normals, out.len()),
+            "shade_batch_*8: the six input slices and the output must have the same length"
+        );
+        let n = positions.len().min(normals.len()).min(out.len());
+        self.shade_inputs(
+            positions.range(0..n),
+            normals.range(0..n),
+            &kernel::PointInputs::default(),
+            out.part(0..n),
+        )
+    }
+
+    /// Points `run` of the slices and of `inputs`, into the same points of `out` (the others
+    /// untouched); returns the run's length.
+    pub(super) fn shade_range<O: Sink>(
+        &self,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &kernel::PointInputs<'_>,
+        out: &mut O,
+        run: core::ops::Range<usize>,
+    ) -> usize {
+        self.shade_inputs(
+            pos.range(run.clone()),
+            nor.range(run.clone()),
+            &inputs.from(run.start),
+            out.part(run),
+        )
+    }
+
+    /// Shades the common prefix of the slices, with per-point inputs over at least as many
+    /// points; returns its length. The kernel runs when it takes every light and, for per-point
+    /// surfaces, when the model's pow strategy is `Auto` (the only plan it runs per lane) or
+    /// there is no lobe; otherwise point by point.
+    pub(super) fn shade_inputs<O: Sink>(
+        &self,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &kernel::PointInputs<'_>,
+        out: O,
+    ) -> usize {
+        let kernel = self.kernel.as_ref().filter(|k| {
+            !inputs.per_point_surface()
+                || k.lm.pow == crate::PowStrategy::Auto
+                || k.lm.lobe == prepare::Lobe::None
+        });
+        match kernel {
+            Some(k) => {
+                let call = kernel::CallOf {
+                    model: self.model,
+                    material: self.material,
+                    scene: self.scene,
+                };
+                let job = kernel::Job {
+                    setup: k,
+                    call: &call,
+                    pos,
+                    nor,
+                    inputs,
+                    out,
+                };
+                super::dispatch::run_level(self.level, job)
+            }
+            None => scalar(self.model, self.material, self.scene, pos, nor, inputs, out),
+        }
+    }
+}
+
+/// Point by point with [`shade`](crate::shade) (with per-point inputs, a [`Shader`]'s
+/// `shade_surface`), for scenes the kernel does not handle.
+///
+/// [`Shader`]: crate::Shader
+fn scalar<M: BatchModel, L: BatchLight, O: Sink>(
+    model: &M,
+    material: &Material,
+    scene: &Scene<'_, L>,
+    pos: SoaVec3<'_>,
+    nor: SoaVec3<'_>,
+    inputs: &kernel::PointInputs<'_>,
+    mut out: O,
+) -> usize {
+    let n = pos.len().min(nor.len()).min(out.len());
+    let shader = crate::Shader::new(model, material, scene);
+    for i in 0..n {
+        let (p, q) = (
+            Vec3::new(pos.x[i], pos.y[i], pos.z[i]),
+            Vec3::new(nor.x[i], nor.y[i], nor.z[i]),
+        );
+        let c = match (inputs.surface(i, 1), inputs.visibility) {
+            (None, None) => crate::shade(model, material, scene, p, q),
+            (surface, _) => {
+                let surface = surface.map_or(crate::Surface::of(material), |s| crate::Surface {
+                    ambient: Vec3::new(s[0][0], s[1][0], s[2][0]),
+                    diffuse: Vec3::new(s[3][0], s[4][0], s[5][0]),
+                    specular: Vec3::new(s[6][0], s[7][0], s[8][0]),
+                    shininess: s[9][0],
+                });
+                let vis = crate::VisibilityFn(|j| inputs.visibility(j, i, 1)[0]);
+                shader.shade_surface(p, q, &surface, vis)
+            }
+        };
+        out.put(i, &c);
+    }
+    n
+}
