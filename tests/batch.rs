@@ -6,13 +6,12 @@
 //! over the perturbations the docs allow (each cosine within `η = 2e-6`, attenuation within 2e-6
 //! relative, Blinn's base within 3 ulps, the lobe power within the strategy's
 //! `max_relative_error`, `(8 + 2·lights)` ulps of rounding in each sum), with the saturation rule
-//! applied (tests/support/batch_range.rs). `shade` is checked against the same range outside the
+//! applied (tools/src/batch_range.rs). `shade` is checked against the same range outside the
 //! overflow regime, so the two agree to its width. The range needs no exceptions: near a
 //! discontinuity (the step gate at `N·L = 0`, a lobe base at 0 for `s < 1`, Blinn's `L = −V`) it
 //! simply contains both sides.
 
-#[path = "support/batch_range.rs"]
-mod batch_range;
+use phong_tools::batch_range;
 
 use glam::{DVec3, Vec3};
 use phong::{

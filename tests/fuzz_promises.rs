@@ -26,8 +26,7 @@
 //! array-of-structs entry point that output bit for bit;
 //! colour conversions finite and in range.
 
-#[path = "support/batch_range.rs"]
-mod batch_range;
+use phong_tools::batch_range;
 use phong_tools::{models, rng};
 
 use std::collections::BTreeMap;

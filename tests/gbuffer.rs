@@ -5,12 +5,11 @@
 //! **What is checked.** A point with surface `(Ka, Kd, Ks, s)` and visibilities `visⱼ` is, by the
 //! equation, the same as the point under a material `(Ka, Kd, Ks, s)` (the call's emission kept)
 //! and a scene whose light `j` has diffuse and specular colours `visⱼ·Ldⱼ`, `visⱼ·Lsⱼ` (ambient
-//! unchanged). So each output must lie in that point's range from tests/support/batch_range.rs,
+//! unchanged). So each output must lie in that point's range from tools/src/batch_range.rs,
 //! the one the plain batch is held to. The scalar `shade_surface` is checked against the same
 //! range, and the 8-bit entry point against `linear_to_srgb8` of the `f32` one, bit for bit.
 
-#[path = "support/batch_range.rs"]
-mod batch_range;
+use phong_tools::batch_range;
 
 use glam::Vec3;
 use phong::{
@@ -893,7 +892,7 @@ fn run_terms(
 /// The separate-terms output, term by term, against the equation. Each term of the equation is
 /// the whole equation for a material that keeps only that term's reflectance (the other two and
 /// the emission zero), so each term written must lie in that material's range from
-/// tests/support/batch_range.rs: the accuracy the batch documents, with no tolerance of its own.
+/// tools/src/batch_range.rs: the accuracy the batch documents, with no tolerance of its own.
 /// Every model, with and without per-point surfaces and visibilities, every level, random points
 /// with the degenerate ones `points` mixes in (zero normals, a point at a light or at the eye);
 /// a coverage mask leaves the uncovered points' nine values untouched.

@@ -11,8 +11,7 @@
 //! `gouraud_error_bound`'s rounding and pow-strategy allowances are tested in
 //! tests/shading_rate.rs, next to the bound's other tests.
 
-#[path = "support/batch_range.rs"]
-mod batch_range;
+use phong_tools::batch_range;
 mod strategies;
 
 use glam::{DVec3, Vec3};

@@ -10,6 +10,8 @@
 //! public API of `phong`:
 //!
 //! - [`reference`]: every formula of the crate evaluated plainly in `f64`, the ruler;
+//! - [`batch_range`]: the range of values the batch path's documented accuracy allows at a
+//!   point, the check tests/batch.rs, tests/gbuffer.rs and the fuzz campaign apply;
 //! - [`measure`]: the error of each `f32` function against that ruler (docs/accuracy.md);
 //! - [`slivers`]: the thin-triangle study behind the triangle normal's method;
 //! - [`stability_cases`]: the stability matrix (docs/stability.md);
@@ -18,6 +20,7 @@
 //! - [`rng`]: the seeded generator (SplitMix64) every measurement, test and bench draws from;
 //! - [`bench_scene`]: the benches' scene, which the `performance` tool measures the accuracy of.
 
+pub mod batch_range;
 pub mod bench_scene;
 pub mod measure;
 pub mod models;

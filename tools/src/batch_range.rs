@@ -3,7 +3,6 @@
 //! ("Accuracy") allow, with the saturation rule ("Saturation") applied. A batch result outside it
 //! breaks the promise; so does a `shade` result (whose perturbations are smaller), except in the
 //! overflow regime, where only the batch's rule is checked.
-#![allow(dead_code, reason = "each includer uses its own subset")]
 
 use glam::{DVec3, Vec3};
 use phong::{
@@ -13,29 +12,32 @@ use phong::{
 
 /// The most `f32` operations between a light's inputs and the output channel, each of which may
 /// underflow into the subnormal range (see `range`).
-pub(crate) const UNDERFLOW_OPS: f64 = 32.0;
+pub const UNDERFLOW_OPS: f64 = 32.0;
 /// `f32`'s unit roundoff.
-pub(crate) const U: f64 = 1.0 / 16_777_216.0;
+pub const U: f64 = 1.0 / 16_777_216.0;
 /// How far each cosine the kernel uses may be from the exact one (module docs: `η`).
-pub(crate) const ETA: f64 = 2e-6;
+pub const ETA: f64 = 2e-6;
 /// How far a point light's attenuation factor may be from the exact one, relative.
-pub(crate) const ATT_REL: f64 = 2e-6;
+pub const ATT_REL: f64 = 2e-6;
 /// How far Blinn-Phong's `(N·H)²` may be from the cosine form of the perturbed cosines, relative.
-pub(crate) const BLINN_REL: f64 = 3.0 * U;
+pub const BLINN_REL: f64 = 3.0 * U;
 const MAX: f64 = f32::MAX as f64;
 
 /// Per channel: the lowest and highest value the promise allows, and whether any of the three
 /// sums or their products with the material's colours reaches `f32::MAX` (the overflow regime).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Range {
+pub struct Range {
+    /// The lowest value per channel.
     pub lo: DVec3,
+    /// The highest value per channel.
     pub hi: DVec3,
+    /// Whether the point is in the overflow regime.
     pub saturated: bool,
 }
 
 impl Range {
     /// Whether `c` lies in the range, per channel.
-    pub(crate) fn holds(&self, c: Vec3) -> bool {
+    pub fn holds(&self, c: Vec3) -> bool {
         let c = c.as_dvec3();
         c.is_finite() && c.cmpge(self.lo).all() && c.cmple(self.hi).all()
     }
@@ -106,7 +108,7 @@ fn parts(model: &Model) -> (SpecularGate, Normalization, Option<(PowStrategy, bo
 /// of `phong::batch`: every cosine within `ETA`, attenuation within `ATT_REL`, Blinn's base within
 /// `BLINN_REL`, the lobe power within the strategy's error, the saturation rule, and a rounding
 /// allowance of `(8 + 2·lights)·U` relative in each sum and in the total).
-pub(crate) fn range<L: LightSource>(
+pub fn range<L: LightSource>(
     model: &Model,
     material: &Material,
     scene: &Scene<'_, L>,
