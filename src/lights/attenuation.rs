@@ -95,29 +95,77 @@ fn window(d: f32, r: f32) -> f32 {
     }
 }
 
-/// The polynomial factor where its `f32` denominator `c + d·(l + q·d)` overflowed (for a finite
-/// `d ≥ 0` and coefficients in `[0, f32::MAX]`): the same Horner form in `f64`, which cannot
-/// overflow (it is below `2³⁸⁵`), rounded once to `f32`.
+/// `2⁻³²`, exact in `f32`: the scale of the distance and of `l` in [`overflowed_reciprocal`].
+const TWO_POW_M32: f32 = f32::from_bits((127 - 32) << 23);
+
+/// `2⁻⁶⁴`, exact in `f32`: the scale of `c`, and of the reciprocal back.
+const TWO_POW_M64: f32 = f32::from_bits((127 - 64) << 23);
+
+/// `1 + 12·2⁻²⁴`: how far [`overflowed_reciprocal`] raises its scaled denominator (see there).
+const RAISE: f32 = 1.0 + 12.0 / (1u32 << 24) as f32;
+
+/// The polynomial's coefficients rescaled for [`overflowed_reciprocal`]: `c·2⁻⁶⁴` and `l·2⁻³²`,
+/// each exact, or 0 where it would be subnormal (`c < 2⁻⁶²`, `l < 2⁻⁹⁴`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct OverflowScale {
+    c: f32,
+    l: f32,
+}
+
+impl OverflowScale {
+    #[inline(always)]
+    fn new(constant: f32, linear: f32) -> Self {
+        let c = constant * TWO_POW_M64;
+        let l = linear * TWO_POW_M32;
+        Self {
+            c: if c >= f32::MIN_POSITIVE { c } else { 0.0 },
+            l: if l >= f32::MIN_POSITIVE { l } else { 0.0 },
+        }
+    }
+}
+
+/// `2⁶⁴ / (c + d·(l + q·d))`, raised by [`RAISE`], for a polynomial whose `f32` denominator
+/// overflowed: the same Horner form on operands scaled into range, in `f32`, with `ds = d·2⁻³²`.
+/// Times `2⁻⁶⁴` (one rounding) it is the factor.
 ///
-/// Out of line and cold, so the common path of [`Attenuation::factor`] keeps one comparison.
+/// **Why it cannot overflow or lose the answer.** Where the `f32` denominator overflows, the exact
+/// one is at least `2¹⁰⁰` (each way of overflowing needs `l + q·d ≳ 2¹²⁸` with `d ≳ 2⁻²⁵`, or
+/// `d·(l + q·d)` or the sum `≳ 2¹²⁸`), so `ds ≥ 2⁻⁵⁷` is normal and exact, and the scaled
+/// denominator, `2⁻⁶⁴` times the exact one, is at least `2³⁶`. A coefficient flushed to 0 by
+/// [`OverflowScale`] contributed less than `2⁻⁶⁰` of it, an underflow in `q·ds` less than
+/// `2⁻⁹⁰`. An intermediate that overflows means an exact denominator above `2¹⁹²`, whose factor
+/// rounds to 0, as `1/∞` does.
+///
+/// **No subnormal operand where it did not overflow.** A vectorised loop evaluates this for every
+/// point and discards it where the denominator was finite; for distances and coefficients of
+/// ordinary size every intermediate is then a normal number (`2⁻³²` and `2⁻⁶⁴` are far from the
+/// subnormal range), where a subnormal one would cost a microcode assist per instruction on many
+/// x86 cores.
 ///
 /// **Monotone across the switch.** The `f32` path's denominator `D₁` at any smaller distance is
-/// at most 4 roundings above the exact one, plus absolute underflow errors below `2⁻²⁰`. Where the
-/// `f32` denominator overflows, the exact one is at least `2¹⁰⁰` (each way of overflowing needs
-/// `l + q·d ≳ 2¹²⁸` with `d ≳ 2⁻²⁵`, or `d·(l + q·d)` or the sum `≳ 2¹²⁸`), so those absolute
-/// errors are below `2⁻¹²⁰` of it, and `D₁ ≤ den·(1 + 4.01·2⁻²⁴)`. The `f64` denominator (3
-/// roundings of `2⁻⁵³`; `q·d` is exact) is raised by `2⁻²¹ = 8·2⁻²⁴`, so it exceeds every such
-/// `D₁`, and the result is at most the `f32` path's `1/D₁`: the factor stays non-increasing in
-/// `d`, which [`Attenuation::cull_radius`]'s bisection relies on. The price is a relative error
-/// of at most `2⁻²¹` plus the final rounding, the size of the `f32` path's own.
+/// at most 4 roundings above the exact one, plus absolute underflow errors below `2⁻²⁰`, which
+/// are below `2⁻¹²⁰` of it here: `D₁ ≤ den·(1 + 4.01·2⁻²⁴)`. This evaluation is at least
+/// `den·2⁻⁶⁴·(1 − 4.01·2⁻²⁴)` (4 roundings); raised by `12·2⁻²⁴` (one more rounding), and with
+/// the reciprocal's own rounding, the factor stays below the exact `1/D₁`, so after the final
+/// rounding it is at most the `f32` path's `1/D₁`: the factor is non-increasing in `d`, which
+/// [`Attenuation::cull_radius`]'s bisection relies on. The price is a relative error of at most
+/// `19·2⁻²⁴` below the exact factor, plus `2⁻¹⁵⁰` where the factor is subnormal.
+#[inline(always)]
+fn overflowed_reciprocal(k: OverflowScale, quadratic: f32, ds: f32) -> f32 {
+    1.0 / ((k.c + ds * (k.l + quadratic * ds)) * RAISE)
+}
+
+/// The polynomial factor where its `f32` denominator `c + d·(l + q·d)` overflowed (for a finite
+/// `d ≥ 0` and coefficients in `[0, f32::MAX]`): [`overflowed_reciprocal`] scaled back.
+///
+/// Out of line and cold, so the common path of [`Attenuation::factor`] keeps one comparison.
 #[cold]
 #[inline(never)]
 fn polynomial_overflowed(constant: f32, linear: f32, quadratic: f32, d: f32) -> f32 {
-    let (c, l, q, d) = (constant as f64, linear as f64, quadratic as f64, d as f64);
-    let den = c + d * (l + q * d);
-    let f = 1.0 / (den * (1.0 + 1.0 / (1u32 << 21) as f64));
+    let k = OverflowScale::new(constant, linear);
+    let f = overflowed_reciprocal(k, quadratic, d * TWO_POW_M32) * TWO_POW_M64;
     // ∞ coefficients (outside the domain) give 1/∞ = 0; NaN cannot arise from a finite d.
-    math::clamp_or_lo(f as f32, 0.0, math::MAX)
+    math::clamp_or_lo(f, 0.0, math::MAX)
 }
 
 /// [`window`] in `f64`, the same factored form (no cancellation near `d = r`), for the root
@@ -153,7 +201,7 @@ fn window_f64(d: f64, r: f64) -> f64 {
 /// | `Frostbite` | – | 1 | `max(ε, f32::MIN_POSITIVE)` | `r` |
 ///
 /// These are [`Attenuation::factor`]'s own operations in its own order, so the result is the same,
-/// bit for bit, including the `f64` evaluation of an overflowing polynomial denominator.
+/// bit for bit, including the scaled evaluation of an overflowing polynomial denominator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FlatAttenuation {
     c: f32,
@@ -165,8 +213,11 @@ pub(crate) struct FlatAttenuation {
     radius: f32,
     /// Divide by `dd` twice (the inverse-square forms) instead of by `max(den, floor)`.
     twice: bool,
-    /// Evaluate an overflowing denominator in `f64` (the polynomial forms, as `factor` does).
-    wide: bool,
+    /// Where the denominator counts as overflowed: `f32::MAX` for the polynomial forms (above it
+    /// means ∞, evaluated scaled into range as `factor` does), ∞ for the others (never).
+    overflow_above: f32,
+    /// The coefficients for that evaluation.
+    scaled: OverflowScale,
 }
 
 impl FlatAttenuation {
@@ -194,14 +245,10 @@ impl FlatAttenuation {
         };
         let q = self.power * w / a;
         let q = if self.twice { q / dd } else { q };
-        let f = if den < f32::INFINITY || !self.wide {
-            q
-        } else {
-            // As `polynomial_overflowed` (the polynomial forms: power 1, no window).
-            let (c, l, q, dd) = (self.c as f64, self.l as f64, self.q as f64, dd as f64);
-            let den = c + dd * (l + q * dd);
-            (1.0 / (den * (1.0 + 1.0 / (1u32 << 21) as f64))) as f32
-        };
+        // As `polynomial_overflowed` (the polynomial forms: power 1, no window). A vectorised
+        // loop computes both and selects; see `overflowed_reciprocal` for why that is cheap.
+        let wide = overflowed_reciprocal(self.scaled, self.q, dd * TWO_POW_M32) * TWO_POW_M64;
+        let f = if den > self.overflow_above { wide } else { q };
         math::clamp_or_lo(f, 0.0, math::MAX)
     }
 }
@@ -223,7 +270,12 @@ impl Attenuation {
             floor: Self::MIN_DENOMINATOR,
             radius,
             twice,
-            wide: matches!(self, Attenuation::None | Attenuation::Polynomial { .. }),
+            overflow_above: if matches!(self, Attenuation::None | Attenuation::Polynomial { .. }) {
+                math::MAX
+            } else {
+                f32::INFINITY
+            },
+            scaled: OverflowScale::new(c, l),
         };
         let inf = f32::INFINITY;
         let eps = |e: f32| e.max(f32::MIN_POSITIVE);
@@ -477,8 +529,9 @@ impl Attenuation {
     /// **Accuracy:** against the exact formula, at most 5 roundings (`5·2⁻²⁴` relatively) for the
     /// polynomial, 2 for the inverse-square and 20 for the windowed forms, with results below
     /// `f32::MIN_POSITIVE` only absolutely accurate (subnormal). A polynomial whose `f32`
-    /// denominator overflows (a coefficient near `f32::MAX`) is evaluated in `f64` out of line,
-    /// to within `2⁻²¹` plus one rounding, instead of giving 0.
+    /// denominator overflows (a coefficient near `f32::MAX`, or a distance near it) is evaluated
+    /// out of line on operands scaled into range, to within `19·2⁻²⁴` below the exact factor
+    /// (plus `2⁻¹⁵⁰` where it is subnormal), instead of giving 0.
     ///
     /// **Monotone:** for valid parameters the factor never exceeds `factor(0)`, and is
     /// non-increasing in `d`: exactly for `None`, the polynomial and the inverse-square forms
@@ -706,7 +759,7 @@ mod tests {
 
     /// The flat form is `factor` itself, operation for operation, for every form and every
     /// distance: near 0, around each radius and minimum distance, and out to `f32::MAX` (where the
-    /// polynomial denominator overflows and both take `f64`).
+    /// polynomial denominator overflows and both take the scaled evaluation).
     #[test]
     fn flat_form_is_the_factor_bit_for_bit() {
         let forms = [

@@ -666,8 +666,9 @@ fn main() {
          it out of a probe loop: full-range normalisation by power-of-two scaling, where the \
          baseline's `normalize` fails on huge and tiny vectors (about 30% for N, V and L \
          together, the decisive part: DESIGN.md has the probe); the squaring ladder of fixed length, whose 22 selects on the exponent become 22 \
-         branches (about 4%); the `f64` evaluation of an overflowing attenuation denominator, \
-         which a vectorised loop computes beside the common one for every point (about 5%); the \
+         branches (about 4%); the evaluation of an overflowing attenuation denominator on \
+         operands scaled into range, which a vectorised loop computes beside the common one for \
+         every point (in `f64` until 2026-11-27, 6% of the instructions; now in `f32`); the \
          masks for missing directions, the visibility clamp, the gate and the saturating \
          subtraction (1–4% each). Already taken out of the common path, as branches on what is \
          the same at every point: the window and the second division of the forms that have \
@@ -677,8 +678,8 @@ fn main() {
          both forms' quotients (slower), the ladder's selects as exact `max` arithmetic on \
          per-exponent constants (no branches, 14% slower), the overflowing denominator's division \
          in `f32` (no faster), colours premultiplied by the material (wrong where products pass \
-         `f32::MAX` or underflow), an `f32` formula for overflowing denominators (loses subnormal \
-         factors the fuzz campaign checks), a ladder without its stop selects (subnormal \
+         `f32::MAX` or underflow), a first `f32` formula for overflowing denominators (lost subnormal \
+         factors the fuzz campaign checks; the one now used scales its operands), a ladder without its stop selects (subnormal \
          products, much slower). A loop the compiler cannot see into (a scene passed in, several \
          lights) is scalar: that is `raytrace` above, against scalar hand-written code.\n\
          - **`scalar_opaque`**: the one-light path is written for a loop the compiler vectorises, \
@@ -696,7 +697,7 @@ fn main() {
          per-point surface saturates its products only: together 177 → 130 instructions a point \
          (callgrind on a probe of this loop; the hand-written loop runs 100, `powf` included), \
          1.5× → 1.3× `hand`'s time here. What remains is the guarantees' work listed for `scalar` \
-         (full-range normalisation of N, V and L, the saturating subtractions, the `f64` \
+         (full-range normalisation of N, V and L, the saturating subtractions, the scaled \
          evaluation of an overflowing denominator beside the common one, the clamps) and the \
          sanitising of each point's reflectances; the hand-written loop does none of it.\n\
          - **`batch_frac`** needs `Poly7` (degree 7 `log2`, degree 5 `exp2`) to stay as 8-bit \
