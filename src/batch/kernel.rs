@@ -787,7 +787,9 @@ fn falloff(d: &[Lanes; 3], flat: FlatAttenuation, spot: Option<SpotLight>) -> ([
         let dist = math::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
         let inv = 1.0 / dist;
         (lx[i], ly[i], lz[i]) = (dx[i] * inv, dy[i] * inv, dz[i] * inv);
-        let f = flat.factor(dist);
+        // A lane out of range (flagged for the scalar path, its value discarded) can reach +∞
+        // or NaN here: clamped into the factor's domain.
+        let f = flat.factor(math::clamp_or_lo(dist, 0.0, math::MAX));
         att[i] = match spot {
             Some(spot) => {
                 let c = spot.spot_factor(Vec3::new(lx[i], ly[i], lz[i]));
@@ -1112,14 +1114,13 @@ pub(crate) fn run<S: Simd, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>) -
             (false, true) => run_with::<S, _, false, true, false, false>(s, job),
         };
     }
-    match (
-        job.inputs.per_point_surface(),
-        job.inputs.visibility.is_some(),
-    ) {
-        (false, _) if job.setup.folded => run_with::<S, _, true, true, false, true>(s, job),
-        (false, _) => run_with::<S, _, false, true, false, true>(s, job),
-        (true, false) => run_with::<S, _, false, true, true, false>(s, job),
-        (true, true) => run_with::<S, _, false, true, true, true>(s, job),
+    // A per-point surface without visibilities runs the instance with both, its visibilities
+    // read as 1 (`PointInputs::visibility`): `f·clamp(1, 0, 1)` is `f`, so the bits are those
+    // of an instance without them, and the build compiles one kernel fewer per level and sink.
+    match job.inputs.per_point_surface() {
+        false if job.setup.folded => run_with::<S, _, true, true, false, true>(s, job),
+        false => run_with::<S, _, false, true, false, true>(s, job),
+        true => run_with::<S, _, false, true, true, true>(s, job),
     }
 }
 
@@ -1227,7 +1228,10 @@ where
         y: &nor.y[..len],
         z: &nor.z[..len],
     };
-    let per_point = (SURFACE || VISIBILITY).then_some(inputs);
+    // The scalar fix-up reads per-point inputs only where the call has some: an instance with
+    // inputs also runs calls without them (8-bit output), whose lanes `shade` redoes with the
+    // material's own pow plan, as the instance without inputs did.
+    let per_point = ((SURFACE || VISIBILITY) && has_inputs(inputs)).then_some(inputs);
     // The first lights' constants in every lane, once per call (a loop, not `array::from_fn`: a
     // closure may be left out of line, without the level's target features).
     let mut lights = [LightLanes::new(s, k.prepared[0], FOLDED); PREPARED];

@@ -221,10 +221,15 @@ pub(crate) struct FlatAttenuation {
 }
 
 impl FlatAttenuation {
-    /// The factor at distance `d ≥ 0` (finite or `f32::MAX`, as the crate's lengths are).
+    /// The factor at distance `d ∈ [0, f32::MAX]` (the crate's lengths are: the caller passes one,
+    /// and debug builds assert it). Never NaN and never negative (every numerator is finite and
+    /// `≥ 0`, every denominator positive), so only the saturation at `f32::MAX` is applied.
     #[inline(always)]
     pub(crate) fn factor(&self, d: f32) -> f32 {
-        let d = math::clamp_or_lo(d, 0.0, math::MAX);
+        debug_assert!(
+            (0.0..=math::MAX).contains(&d),
+            "a flat factor's distance must lie in [0, f32::MAX], got {d}"
+        );
         let dd = math::max_or(d, self.min_d);
         let den = self.c + dd * (self.l + self.q * dd);
         // `radius` is the same at every point: in a vectorised loop this stays a branch, and the
@@ -249,7 +254,7 @@ impl FlatAttenuation {
         // loop computes both and selects; see `overflowed_reciprocal` for why that is cheap.
         let wide = overflowed_reciprocal(self.scaled, self.q, dd * TWO_POW_M32) * TWO_POW_M64;
         let f = if den > self.overflow_above { wide } else { q };
-        math::clamp_or_lo(f, 0.0, math::MAX)
+        math::min_or(f, math::MAX)
     }
 }
 
