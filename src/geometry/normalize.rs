@@ -104,11 +104,10 @@ fn scales(v: Vec3) -> (f32, f32) {
     let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
     let m = math::min_or(math::max_or(math::max_or(ax, ay), az), BELOW_2_127);
     let e_bits = m.to_bits() & 0x7f80_0000;
-    let unscale = if e_bits == 0 {
-        f32::from_bits(0x0040_0000)
-    } else {
-        f32::from_bits(e_bits)
-    };
+    // `e_bits` is 0 or at least `0x0080_0000`, so a `max` picks `2⁻¹²⁷` for 0 and `e_bits`
+    // otherwise: one instruction where a compare and a select take three. Both operands are
+    // non-negative, whose float order is their bits' order.
+    let unscale = math::max_or(f32::from_bits(e_bits), f32::from_bits(0x0040_0000));
     (f32::from_bits(0x7f00_0000 - e_bits), unscale)
 }
 
