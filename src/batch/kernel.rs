@@ -958,11 +958,15 @@ where
         };
         let nl0 = s.max(nl, zero);
         // The visibility scales the diffuse and specular parts.
-        let attv = match visibility {
+        let vis = match visibility {
             Some((inputs, i, count)) => {
                 let vis = s.load(&inputs.visibility(j, i, count));
-                s.mul(att, s.min(s.max(vis, zero), one))
+                Some(s.min(s.max(vis, zero), one))
             }
+            None => None,
+        };
+        let attv = match vis {
+            Some(vis) => s.mul(att, vis),
             None => att,
         };
         // The light's gated, scaled-later specular lobe, without its factor.
@@ -996,22 +1000,24 @@ where
         // f and f·max(N·L, 0) are finite (f ≤ 1/MIN_DENOMINATOR), and so is every colour: no
         // product below is 0·∞, and the sums of terms ≥ 0 can reach +∞ but never NaN.
         if FOLDED {
-            // Per channel: amb += f·La' + f·vis·(max(N·L, 0)·Ld' + lobe·Ls'), the light's terms
-            // summed first so the chains into `amb` stay short. The scale is in `ks`, and
-            // nothing overflows.
+            // Per channel: amb += f·(La' + vis·max(N·L, 0)·Ld' + vis·lobe·Ls'), the light's
+            // terms summed first so the chains into `amb` stay short. The scale is in `ks`, and
+            // nothing overflows. The visibility multiplies the cosine and the lobe, so where it
+            // is 1 (a call without visibilities, run by this instance for 8-bit output) those
+            // products are exact and the bits are the instance's without inputs: 8-bit output
+            // stays `shade_batch`'s, encoded.
+            let (nlv, specv) = match (vis, spec) {
+                (Some(vis), Some(w)) => (s.mul(nl0, vis), Some(s.mul(w, vis))),
+                (Some(vis), None) => (s.mul(nl0, vis), None),
+                (None, spec) => (nl0, spec),
+            };
             for c in 0..3 {
-                let t = match visibility {
-                    None => s.mul_add(nl0, ld[c], la[c]),
-                    Some(_) => s.mul(nl0, ld[c]),
-                };
-                let t = match spec {
+                let t = s.mul_add(nlv, ld[c], la[c]);
+                let t = match specv {
                     Some(w) => s.mul_add(w, ls[c], t),
                     None => t,
                 };
-                amb[c] = match visibility {
-                    None => s.mul_add(att, t, amb[c]),
-                    Some(_) => s.mul_add(attv, t, s.mul_add(att, la[c], amb[c])),
-                };
+                amb[c] = s.mul_add(att, t, amb[c]);
             }
             continue;
         }
