@@ -163,7 +163,7 @@ macro_rules! level_entry {
             // 8-bit output is the G-buffer's: one instance, the one with per-point inputs, runs
             // every call (without inputs their visibilities read as 1 and the material is the
             // surface), so the build compiles four kernels fewer per level. A plain call pays
-            // the visibility's load and product per light and chunk.
+            // the visibility's load and two products per light and chunk.
             fn run_pixels(
                 self,
                 job: $crate::batch::kernel::Job<'_, $crate::batch::sink::Pixels8<'_>>,
