@@ -4,26 +4,20 @@ use core::fmt;
 
 /// An instruction-set level of the batch kernel.
 ///
-/// The levels run two kernel sources. `Portable`, `Neon`, `Sse2` and `Avx2` run one portable
-/// kernel (plain Rust over 16-lane arrays), compiled once per level with that level's target
-/// features for LLVM to vectorise, and passed that level's inverse square root. `Avx512` runs a
-/// second kernel for calls with one material, no shadows and only directional and polynomial
-/// point lights ([`shade_batch`](crate::shade_batch) and the 8-bit and array-of-structs entry
-/// points): the same equations written with AVX-512 intrinsics, fused multiply-adds throughout
-/// and its `log2`/`exp2` polynomials by Estrin's scheme, so it rounds differently from the
-/// others. Other calls (G-buffer calls with a per-point surface or per-light visibility through
-/// [`shade_gbuffer`](crate::shade_gbuffer), and scenes with a spot light or another falloff)
-/// run the portable kernel at every level, at `Avx512` compiled for AVX-512 with `vrsqrt14ps`.
-/// They differ in the vector width and in how the three inverse norms `1/‖n‖`, `1/‖L‖`, `1/‖V‖`
-/// are computed:
+/// Every level runs the same kernel source: one 16-lane loop, generic over a private trait of
+/// vector primitives (fused or separate multiply-add, inverse square root, compares and selects,
+/// the integer bit operations of `log2`/`exp2`), which each level implements with its own
+/// instructions and compiles inside its own `#[target_feature]` function. The levels differ in
+/// the vector width, in whether multiply-adds are fused, and in how the three inverse norms
+/// `1/‖n‖`, `1/‖L‖`, `1/‖V‖` are computed, so their results differ by rounding:
 ///
-/// | level | kernel | vectors | inverse norm | its relative error |
-/// |---|---|---|---|---|
-/// | `Portable` | portable, the build's target features | whatever the build targets (4 × f32, SSE2, in a default x86_64 build) | `1 / sqrt(x)` | ≤ 1 ulp + 0.5 ulp |
-/// | `Neon` (aarch64) | portable, NEON | 4 × f32 | `frsqrte` + two Newton steps (`frsqrts`) | ≈ 2e-7 |
-/// | `Sse2` (x86_64) | portable, SSE2 | 4 × f32 | `rsqrtps` + one Newton step | ≤ 1.5·(1.5·2⁻¹²)² + rounding ≈ 3e-7 |
-/// | `Avx2` (AVX2 + FMA) | portable, AVX2 + FMA | 8 × f32 | `vrsqrtps` + one Newton step (fused) | ≈ 3e-7, as `Sse2` |
-/// | `Avx512` (AVX-512F/VL + AVX2 + FMA) | intrinsics (G-buffer calls: portable, AVX-512) | 16 × f32 | `vrsqrt14ps` + one Newton step | ≤ 1.5·2⁻²⁸ + rounding ≈ 1.5e-7 |
+/// | level | vectors | inverse norm | its relative error |
+/// |---|---|---|---|
+/// | `Portable` | `[f32; 16]` loops, vectorised for whatever the build targets | `1 / sqrt(x)` | ≤ 1 ulp + 0.5 ulp |
+/// | `Neon` (aarch64) | 4 × 4 f32, fused | `frsqrte` + two Newton steps (`frsqrts`) | ≈ 2e-7 |
+/// | `Sse2` (x86_64) | 4 × 4 f32 | `rsqrtps` + one Newton step | ≤ 1.5·(1.5·2⁻¹²)² + rounding ≈ 3e-7 |
+/// | `Avx2` (AVX2 + FMA) | 2 × 8 f32, fused | `vrsqrtps` + one Newton step (fused) | ≈ 3e-7, as `Sse2` |
+/// | `Avx512` (AVX-512F/VL + AVX2 + FMA) | 1 × 16 f32, fused, mask registers | `vrsqrt14ps` + one Newton step | ≤ 1.5·2⁻²⁸ + rounding ≈ 1.5e-7 |
 ///
 /// (A Newton step `y' = y·(3 − x·y²)/2` turns a relative error `e` into about `1.5·e²`.) Every
 /// level sends the same points to the scalar [`shade`](crate::shade) (degenerate points, and
@@ -31,6 +25,12 @@ use core::fmt;
 /// module docs), and every level computes `PowStrategy::Exact` with `powf` lane by lane. The
 /// batch tests compare every level with the scalar [`shade`](crate::shade); docs/performance.md
 /// has each level's speed and 8-bit accuracy.
+///
+/// On x86_64 and on aarch64 with NEON, where a vector level always exists, `Portable` runs only
+/// when a caller forces it (with [`shade_batch_with_level`](crate::shade_batch_with_level)), and
+/// it is compiled as the kernel's one general form (no folded products, no specialisation for
+/// calls without per-point inputs): it keeps the build small and is slower than it would be
+/// on a target where it is the level every call runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[non_exhaustive]
 pub enum Level {
