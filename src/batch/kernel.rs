@@ -1135,6 +1135,15 @@ pub(crate) fn run<S: Simd, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>) -
 /// has not), and never folds the products (the terms must stay apart).
 #[inline(always)]
 pub(crate) fn run_terms<S: Simd>(s: S, job: Job<'_, SoaTerms<'_>>) -> usize {
+    run_general(s, job)
+}
+
+/// The general instance, for any job and sink: products not folded (valid whatever the scene's
+/// magnitudes), per-lane calls allowed, and per-point surfaces and visibilities read where the
+/// call has them (the material's values and full visibility where it has not). [`run`]'s other
+/// instances are this one specialised; their results differ from it only by rounding.
+#[inline(always)]
+pub(crate) fn run_general<S: Simd, O: Sink>(s: S, job: Job<'_, O>) -> usize {
     run_with::<S, _, false, true, true, true>(s, job)
 }
 

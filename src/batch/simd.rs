@@ -179,6 +179,39 @@ macro_rules! level_entry {
             }
         }
     };
+    // A level that runs only when a caller forces it: one instance per output form, the general
+    // one (no folding, per-point inputs read where the call has them), so the build compiles
+    // three kernels for the level instead of eleven. See `portable.rs` for where this applies.
+    ($level:ident, general_only) => {
+        /// The kernel compiled for this level: the general instance.
+        #[inline(never)]
+        fn kernel<O: $crate::batch::sink::Sink>(
+            t: $level,
+            job: $crate::batch::kernel::Job<'_, O>,
+        ) -> usize {
+            $crate::batch::kernel::run_general::<$level, O>(t, job)
+        }
+
+        impl $crate::batch::simd::Kernels for $level {
+            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
+                kernel(self, job)
+            }
+
+            fn run_pixels(
+                self,
+                job: $crate::batch::kernel::Job<'_, $crate::batch::sink::Pixels8<'_>>,
+            ) -> usize {
+                kernel(self, job)
+            }
+
+            fn run_terms(
+                self,
+                job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
+            ) -> usize {
+                kernel(self, job)
+            }
+        }
+    };
     // A call of the level's kernel: `unsafe` where it is a `#[target_feature]` function.
     (@call $features:literal; $call:expr) => {
         // SAFETY: a token of this level exists only where the CPU has every feature the kernel
@@ -194,6 +227,16 @@ macro_rules! level_entry {
 /// native operation (`$n`: the native `f32` vector, `$ni`: `i32` vector, `$nm`: mask vector).
 /// Each method applies the native operation to every part, written out (no closure, which might
 /// be left out of line without the level's target features).
+#[cfg_attr(
+    not(any(
+        target_arch = "x86_64",
+        all(target_arch = "aarch64", target_feature = "neon")
+    )),
+    allow(
+        unused_macros,
+        reason = "only the vector levels use it; this target has none"
+    )
+)]
 macro_rules! simd_by_parts {
     ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident) => {
         impl $crate::batch::simd::Simd for $token {

@@ -27,6 +27,19 @@ macro_rules! each {
     }};
 }
 
+// Where a vector level always exists (x86_64 has SSE2, aarch64 NEON), the portable level runs
+// only when a caller forces it (the tests, the levels table in docs/performance.md): one general
+// instance per output form keeps its code small there. It was 43% of the library's kernel code
+// with eleven instances. Elsewhere it is the level every call runs, with every instance.
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "aarch64", target_feature = "neon")
+))]
+level_entry!(Portable, general_only);
+#[cfg(not(any(
+    target_arch = "x86_64",
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
 level_entry!(Portable);
 
 impl Simd for Portable {
