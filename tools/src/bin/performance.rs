@@ -690,13 +690,17 @@ fn main() {
          looped ladder of the light loop bring a lone point to about 2.2× `naive_glam`'s time, \
          but the loop then stops vectorising, and `scalar` falls to the same figure. No single form \
          found serves both shapes; `scalar`, the README's loop, keeps the vectorised one. Shading \
-         many points from one place is the batch's job (below): 5–9× `naive_glam`.\n\
+         many points from one place is the batch's job (`batch × naive` in the first table).\n\
          - **`fragment`**: a shininess per point is a per-lane value in the vectorised loop. \
          `Auto` now takes `Poly7` for a point's own exponent at every value (choosing squaring for \
          whole ones ran both forms at every point), and under a light whose sums are bounded a \
          per-point surface saturates its products only: together 177 → 130 instructions a point \
          (callgrind on a probe of this loop; the hand-written loop runs 100, `powf` included), \
-         1.5× → 1.3× `hand`'s time here. What remains is the guarantees' work listed for `scalar` \
+         1.5× → 1.3× `hand`'s time. On 2026-11-27 the probe counted 121 against the hand-written \
+         loop's 105 (36 of them in `powf`): LLVM vectorises the `phong` loop four points at a \
+         time (483 instructions per four points, 104 of them register copies, spills and reloads \
+         of SSE2's two-operand form), while the hand-written loop stays scalar around its `powf` \
+         call. What remains is the guarantees' work listed for `scalar` \
          (full-range normalisation of N, V and L, the saturating subtractions, the scaled \
          evaluation of an overflowing denominator beside the common one, the clamps) and the \
          sanitising of each point's reflectances; the hand-written loop does none of it.\n\
@@ -985,6 +989,24 @@ fn main() {
          shading --no-run)\n/tmp/b259/target/release/deps/shading-<hash> --bench levels_4096 \
          --save-baseline b259   # run from this repository's root\n```\n"
     );
+    if !Level::supported().any(|lv| lv == Level::Avx512) {
+        let _ = writeln!(
+            md,
+            "**This CPU has no AVX-512**, so this run has no AVX-512 row and no `÷ AVX-512` \
+             ratio: the levels' targets relative to AVX-512 are not measured here. An earlier run \
+             on an AVX-512 machine is in this file's git history.\n"
+        );
+    }
+    if cfg!(any(target_arch = "x86_64", target_arch = "aarch64")) {
+        let _ = writeln!(
+            md,
+            "On this architecture `portable` runs only when forced, and it is compiled as the \
+             kernel's one general form (no folded products, no instance for calls without \
+             per-point inputs: `Level`'s docs), which keeps the build small. Its row is that form, \
+             slower than the specialised portable kernel a target without vector levels runs, and \
+             than this row at 259b7f8.\n"
+        );
+    }
     let _ = writeln!(
         md,
         "| level | model | s | Mpts/s | ÷ AVX-512 | 259b7f8 Mpts/s | max abs error | 8-bit mismatch |\n\
