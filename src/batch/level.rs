@@ -42,7 +42,8 @@ pub enum Level {
     Avx2,
     /// AVX-512 F and VL, with AVX2 and FMA.
     Avx512,
-    /// aarch64's NEON (every aarch64 CPU): the portable kernel with NEON's inverse square root.
+    /// aarch64's NEON (every aarch64 CPU): the kernel on NEON vectors, with fused multiply-adds
+    /// and NEON's inverse square root estimate.
     Neon,
 }
 
