@@ -5,9 +5,14 @@
 //!   from a shadow ray. `phong` is `Shader::with_viewer(Viewer::Infinite(to_eye)).shade_visible(..)`:
 //!   `examples/raytracer.rs` makes the same call with `Viewer::along_ray(ray direction)`, which is
 //!   `Viewer::Infinite(−ray direction)`.
+//! - `raytrace_one_light`: the same hits under the first of those lights alone.
 //! - `fragment`: a rasterizer shades fragments with texture maps and a shadow map: a per-pixel
 //!   diffuse colour, specular strength, shininess (non-integer, uniform in [2, 128]) and shadow
-//!   factor, one point light, a camera at a point. `phong` is `Shader::shade_surface(..)`.
+//!   factor, one point light, a camera at a point. `phong` is `Shader::shade_surface(..)` in a
+//!   loop over the fragments' arrays, which the compiler vectorises; `hand_callback` and
+//!   `phong_callback` shade the same fragments one per call (each position through `black_box`),
+//!   as a rasterizer's per-fragment callback does, `phong_callback` through
+//!   `Shader::one_at_a_time`.
 //!
 //! The workspace's rasterizer has its own frame bench (`raster_frame`, `cargo bench -p raster`).
 //!
@@ -193,8 +198,14 @@ fn rt_phong(scene: &Scene<'_, PointLight>, m: &Material, h: &Hits, out: &mut [Ve
 }
 
 fn raytrace(c: &mut Criterion) {
+    raytrace_with(c, "raytrace", 3);
+    raytrace_with(c, "raytrace_one_light", 1);
+}
+
+/// The `raytrace` group under the first `count` of its lights.
+fn raytrace_with(c: &mut Criterion, name: &str, count: usize) {
     let h = hits(N, 0x7ace);
-    let lights = rt_lights();
+    let lights = &rt_lights()[..count];
     let hm = HandMaterial {
         ambient: Vec3::new(0.8, 0.3, 0.2),
         diffuse: Vec3::new(0.8, 0.3, 0.2),
@@ -209,18 +220,18 @@ fn raytrace(c: &mut Criterion) {
     };
     let m = Material::try_new(hm.ambient, hm.diffuse, hm.specular, hm.shininess).unwrap();
     let (mut a, mut b) = (vec![Vec3::ZERO; N], vec![Vec3::ZERO; N]);
-    rt_hand(&lights, &hm, &h, &mut a);
+    rt_hand(lights, &hm, &h, &mut a);
     rt_phong(&scene, &m, &h, &mut b);
     for i in 0..N {
-        assert_close("raytrace", b[i], a[i], i);
+        assert_close(name, b[i], a[i], i);
     }
 
-    let mut g = c.benchmark_group("raytrace");
+    let mut g = c.benchmark_group(name);
     g.throughput(Throughput::Elements(N as u64))
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     g.bench_function("hand", |bch| {
-        bch.iter(|| rt_hand(black_box(&lights), &hm, black_box(&h), &mut a))
+        bch.iter(|| rt_hand(black_box(lights), &hm, black_box(&h), &mut a))
     });
     g.bench_function("phong", |bch| {
         bch.iter(|| rt_phong(black_box(&scene), &m, black_box(&h), &mut b))
@@ -305,11 +316,25 @@ const FRAG_LIGHT: HandLight = HandLight {
 const CAMERA: Vec3 = Vec3::new(0.0, 1.0, 4.0);
 
 /// LearnOpenGL's lighting maps with a point light and a shadow factor (shadow-mapping chapter).
+///
+/// `CALLBACK`: each fragment's position passes through `black_box`, so the compiler cannot
+/// vectorise across fragments: one fragment per call, as a rasterizer's per-fragment callback
+/// (texture lookups and shadow-map tests between fragments) shades.
 #[inline(never)]
-fn frag_hand(light: &HandLight, view_pos: Vec3, f: &Fragments, out: &mut [Vec3]) {
+fn frag_hand<const CALLBACK: bool>(
+    light: &HandLight,
+    view_pos: Vec3,
+    f: &Fragments,
+    out: &mut [Vec3],
+) {
     let f = f.rows(out.len());
     for i in 0..out.len() {
-        let (p, color) = (f.position[i], f.albedo[i]);
+        let p = if CALLBACK {
+            black_box(f.position[i])
+        } else {
+            f.position[i]
+        };
+        let color = f.albedo[i];
         let norm = f.normal[i].normalize();
         let light_dir = (light.position - p).normalize();
         let diff = norm.dot(light_dir).max(0.0);
@@ -328,8 +353,10 @@ fn frag_hand(light: &HandLight, view_pos: Vec3, f: &Fragments, out: &mut [Vec3])
 
 /// The same with `phong`: a per-point `Surface` and the shadow as visibility `1 − shadow`. Like
 /// `frag_hand`, it takes its one light at run time and the camera, and builds its scene here.
+/// `CALLBACK` as in `frag_hand`, with the shader's form for one point per call
+/// (`Shader::one_at_a_time`).
 #[inline(never)]
-fn frag_phong(
+fn frag_phong<const CALLBACK: bool>(
     light: &PointLight,
     view_pos: Vec3,
     base: &Material,
@@ -343,17 +370,25 @@ fn frag_phong(
         viewer: Viewer::At(view_pos),
     };
     let shader = Shader::new(Phong::learnopengl(), base, &scene);
+    let shader = if CALLBACK {
+        shader.one_at_a_time()
+    } else {
+        shader
+    };
     let f = f.rows(out.len());
     for i in 0..out.len() {
+        let p = if CALLBACK {
+            black_box(f.position[i])
+        } else {
+            f.position[i]
+        };
         let texel = Surface::textured(
             f.albedo[i],
             Vec3::splat(f.specular_strength[i]),
             f.shininess[i],
         );
         let vis = [1.0 - f.shadow[i]];
-        out[i] = shader
-            .shade_surface(f.position[i], f.normal[i], &texel, vis)
-            .total();
+        out[i] = shader.shade_surface(p, f.normal[i], &texel, vis).total();
     }
 }
 
@@ -362,10 +397,15 @@ fn fragment(c: &mut Criterion) {
     let light = phong_light(&FRAG_LIGHT);
     let base = Material::try_from_color(Vec3::ONE, 32.0).unwrap();
     let (mut a, mut b) = (vec![Vec3::ZERO; N], vec![Vec3::ZERO; N]);
-    frag_hand(&FRAG_LIGHT, CAMERA, &f, &mut a);
-    frag_phong(&light, CAMERA, &base, &f, &mut b);
+    frag_hand::<false>(&FRAG_LIGHT, CAMERA, &f, &mut a);
+    frag_phong::<false>(&light, CAMERA, &base, &f, &mut b);
     for i in 0..N {
         assert_close("fragment", b[i], a[i], i);
+    }
+    frag_hand::<true>(&FRAG_LIGHT, CAMERA, &f, &mut a);
+    frag_phong::<true>(&light, CAMERA, &base, &f, &mut b);
+    for i in 0..N {
+        assert_close("fragment callback", b[i], a[i], i);
     }
 
     let mut g = c.benchmark_group("fragment");
@@ -373,10 +413,16 @@ fn fragment(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     g.bench_function("hand", |bch| {
-        bch.iter(|| frag_hand(black_box(&FRAG_LIGHT), CAMERA, black_box(&f), &mut a))
+        bch.iter(|| frag_hand::<false>(black_box(&FRAG_LIGHT), CAMERA, black_box(&f), &mut a))
     });
     g.bench_function("phong", |bch| {
-        bch.iter(|| frag_phong(black_box(&light), CAMERA, &base, black_box(&f), &mut b))
+        bch.iter(|| frag_phong::<false>(black_box(&light), CAMERA, &base, black_box(&f), &mut b))
+    });
+    g.bench_function("hand_callback", |bch| {
+        bch.iter(|| frag_hand::<true>(black_box(&FRAG_LIGHT), CAMERA, black_box(&f), &mut a))
+    });
+    g.bench_function("phong_callback", |bch| {
+        bch.iter(|| frag_phong::<true>(black_box(&light), CAMERA, &base, black_box(&f), &mut b))
     });
     g.finish();
 }

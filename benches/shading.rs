@@ -174,9 +174,10 @@ fn blinn_model(pow: PowStrategy) -> BlinnPhong {
 /// into the code, here `M::default()`); the light's values and the material arrive at run time
 /// on both sides. `OPAQUE` passes each point through `black_box`, so the compiler cannot vectorise
 /// across points: one point per call, as a recursive ray tracer or a per-pixel callback shades
-/// (`scalar_opaque`).
+/// (`scalar_opaque`). `LONE` takes the shader's form for one point per call
+/// ([`phong::Shader::one_at_a_time`], `scalar_lone`).
 #[inline(never)]
-fn shader_loop<M: phong::ReflectionModel + Default, const OPAQUE: bool>(
+fn shader_loop<M: phong::ReflectionModel + Default, const OPAQUE: bool, const LONE: bool>(
     light: &PointLight,
     mat: &Material,
     p: &[Vec3],
@@ -185,6 +186,7 @@ fn shader_loop<M: phong::ReflectionModel + Default, const OPAQUE: bool>(
 ) {
     let lights = [*light];
     let shader = phong::Shader::new(M::default(), mat, &scene(&lights));
+    let shader = if LONE { shader.one_at_a_time() } else { shader };
     for i in 0..p.len() {
         let q = if OPAQUE { black_box(p[i]) } else { p[i] };
         out[i] = shader.shade(q, n[i]).total();
@@ -252,13 +254,17 @@ fn group<M: phong::ReflectionModel + phong::BatchModel + Default>(
     let check = |soa: &mut Soa, scalar: &mut Vec<Vec3>, naive: &mut Vec<Vec3>, s: f32| {
         let m = material(s);
         naive_glam(kind, s, &p, &nn, naive);
-        shader_loop::<M, false>(&lights[0], &m, &p, &nn, scalar);
+        shader_loop::<M, false, false>(&lights[0], &m, &p, &nn, scalar);
         for i in 0..n {
             assert_close("scalar", scalar[i], naive[i], i);
         }
-        shader_loop::<M, true>(&lights[0], &m, &p, &nn, scalar);
+        shader_loop::<M, true, false>(&lights[0], &m, &p, &nn, scalar);
         for i in 0..n {
             assert_close("scalar_opaque", scalar[i], naive[i], i);
+        }
+        shader_loop::<M, true, true>(&lights[0], &m, &p, &nn, scalar);
+        for i in 0..n {
+            assert_close("scalar_lone", scalar[i], naive[i], i);
         }
         scalar_loop(&M::default(), &m, &scene, &p, &nn, scalar);
         batch_run(level, &model_with(PowStrategy::Auto), &m, &scene, soa);
@@ -286,12 +292,35 @@ fn group<M: phong::ReflectionModel + phong::BatchModel + Default>(
     let model = model_with(PowStrategy::Auto);
     g.bench_function("scalar", |b| {
         b.iter(|| {
-            shader_loop::<M, false>(black_box(&lights[0]), &m32, black_box(&p), &nn, &mut scalar)
+            shader_loop::<M, false, false>(
+                black_box(&lights[0]),
+                &m32,
+                black_box(&p),
+                &nn,
+                &mut scalar,
+            )
         })
     });
     g.bench_function("scalar_opaque", |b| {
         b.iter(|| {
-            shader_loop::<M, true>(black_box(&lights[0]), &m32, black_box(&p), &nn, &mut scalar)
+            shader_loop::<M, true, false>(
+                black_box(&lights[0]),
+                &m32,
+                black_box(&p),
+                &nn,
+                &mut scalar,
+            )
+        })
+    });
+    g.bench_function("scalar_lone", |b| {
+        b.iter(|| {
+            shader_loop::<M, true, true>(
+                black_box(&lights[0]),
+                &m32,
+                black_box(&p),
+                &nn,
+                &mut scalar,
+            )
         })
     });
     g.bench_function("shade", |b| {

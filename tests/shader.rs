@@ -148,7 +148,8 @@ fn shade_is_the_prepared_shader_and_full_visibility_changes_nothing() {
 }
 
 /// A scene with one directional or point light takes the straight-line one-light path (written so
-/// the compiler can vectorise a loop over points); `phong::shade` takes the general light loop.
+/// the compiler can vectorise a loop over points); `phong::shade` and `Shader::one_at_a_time`
+/// take the general light loop.
 /// They are the same computation: every model, falloff, viewer, visibility and per-point surface
 /// gives the same bits.
 #[test]
@@ -215,6 +216,14 @@ fn the_one_light_path_is_the_light_loop_bit_for_bit() {
                     assert_eq!(
                         shader.shade_surface(p, n, &texel, [0.5]),
                         general.shade_surface(p, n, &texel, [0.5, 1.0]),
+                        "{what}"
+                    );
+                    // The one-at-a-time form of the same shader is the light loop too.
+                    let lone = shader.one_at_a_time();
+                    assert_eq!(lone.shade(p, n), shader.shade(p, n), "{what}");
+                    assert_eq!(
+                        lone.shade_surface(p, n, &texel, [0.5]),
+                        shader.shade_surface(p, n, &texel, [0.5]),
                         "{what}"
                     );
                 }

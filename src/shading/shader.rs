@@ -63,6 +63,12 @@ use crate::visibility::{Unshadowed, Visibility};
 /// (bit for bit wherever no squared length under- or overflows `f32`). docs/performance.md measures
 /// both shapes.
 ///
+/// **One point per call.** Where the caller's loop cannot be vectorised (a recursive ray tracer,
+/// a per-fragment callback that samples textures between points), the branch-free form pays for
+/// every rare case at every point: take [`one_at_a_time`](Self::one_at_a_time), which tests them
+/// with branches instead. [`with_viewer`](Self::with_viewer), a ray tracer's call per hit,
+/// returns that form.
+///
 /// ```
 /// use glam::{Vec3, Vec3A};
 /// use phong::{Attenuation, BlinnPhong, LightColors, Material, PointLight, Scene, Shader, Viewer};
@@ -219,13 +225,13 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// of a crate model: every lobe and gate is at most 1 plus a few ulps, and each visibility at
     /// most 1, so no sum or product can then overflow, and the saturating `min`s are skipped. A
     /// product that overflows here is `+∞`, which fails the test: the check itself cannot
-    /// misjudge. Models from outside the crate are never `safe`.
+    /// misjudge. Models from outside the crate and per-point surfaces are never `safe`.
     #[inline(always)]
     fn prepare(&self, ka: Vec3, kd: Vec3, ks: Vec3, s: f32, shared: bool) -> Prepared {
         let specular = plan_for(self.resolved, s, shared);
-        // The one-light path with a per-point surface saturates either way (see `one_light`): the
-        // test would cost more at every point than the `min`s it could skip.
-        let safe = (shared || self.one.is_none())
+        // A per-point surface always saturates: the test would cost more at every point than the
+        // `min`s it could skip (a fifth of a textured point's instructions in the light loop).
+        let safe = shared
             && self.resolved.is_some_and(|r| {
                 // The sums themselves (before the reflectances scale them), then the total.
                 let sums = scaled_sums(r, &self.bounds, specular.scale);
@@ -245,6 +251,10 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// The same shader with another viewer: what a ray tracer changes at every hit, where the
     /// viewer is [`Viewer::along_ray`] of the ray that hit. Cheap: a copy and, for an infinite
     /// viewer, one normalisation.
+    ///
+    /// The shader it returns is also [`one_at_a_time`](Self::one_at_a_time), the faster form
+    /// where each call shades one hit: a viewer that changes per point belongs to a ray tracer,
+    /// whose recursion the compiler cannot vectorise.
     ///
     /// ```
     /// use glam::{Vec3, Vec3A};
@@ -269,8 +279,43 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 Viewer::At(eye) => Viewer::At(eye),
                 Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
             },
+            one: None,
             ..*self
         }
+    }
+
+    /// The same shader in the form for code that shades one point per call, from a loop the
+    /// compiler cannot vectorise: a recursive ray tracer, a rasterizer's per-fragment callback,
+    /// anything that samples a texture or traces a shadow ray between points.
+    ///
+    /// **Why there are two forms.** With one directional or point light, [`new`](Self::new)
+    /// prepares a branch-free form of the equation (see "Loops the compiler can vectorise"
+    /// above). Inside a loop over arrays the compiler runs it four or eight points per
+    /// instruction, but a lone point pays for every rare case at every call. This form tests
+    /// the rare cases (huge or tiny vectors, an overflowing falloff) with branches the processor
+    /// predicts, as the light loop of a scene with several lights always does. Same results, bit
+    /// for bit wherever no squared length under- or overflows `f32` (tests/shader.rs), and the
+    /// same guarantees. [`with_viewer`](Self::with_viewer) returns this form already.
+    ///
+    /// docs/performance.md measures both forms in both kinds of loop (`scalar` and
+    /// `scalar_opaque`, `raytrace_one_light`).
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use phong::{DirectionalLight, LightColors, Material, Phong, Scene, Shader, Viewer};
+    /// let sun = DirectionalLight::try_new(Vec3::Z, LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ONE)?)?;
+    /// let scene = Scene { lights: &[sun], ambient: Vec3::ZERO, viewer: Viewer::At(Vec3::new(0.0, 0.0, 5.0)) };
+    /// let m = Material::try_from_color(Vec3::ONE, 32.0)?;
+    /// let looped = Shader::new(Phong::default(), &m, &scene);
+    /// let lone = looped.one_at_a_time();
+    /// let (p, n) = (Vec3::new(0.5, 0.0, 0.0), Vec3::new(0.0, 0.3, 1.0));
+    /// assert_eq!(lone.shade(p, n), looped.shade(p, n));
+    /// # Ok::<(), phong::PhongError>(())
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn one_at_a_time(self) -> Self {
+        Shader { one: None, ..self }
     }
 
     /// The four terms at `position` with surface normal `normal`, every light unshadowed.
