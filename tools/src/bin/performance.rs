@@ -299,6 +299,14 @@ fn crit_dir() -> PathBuf {
 }
 
 /// Million points per second from the median of `group/function` (criterion's directory names).
+/// The real-shaped groups' rows: (group, hand-written function, `phong` function).
+const REAL_SHAPED: [(&str, &str, &str); 4] = [
+    ("raytrace", "hand", "phong"),
+    ("raytrace_one_light", "hand", "phong"),
+    ("fragment", "hand", "phong"),
+    ("fragment", "hand_callback", "phong_callback"),
+];
+
 fn mpts(group: &str, function: &str, n: usize, which: &str) -> Option<f64> {
     let t = median_ns(&crit_dir().join(group).join(function), which)?;
     Some(n as f64 / t * 1e3)
@@ -492,11 +500,11 @@ fn main() {
     let _ = writeln!(md, "## The benchmark groups\n");
     let _ = writeln!(
         md,
-        "| group | naive_glam | scalar | scalar_opaque | shade | batch | batch_frac | scalar × naive | scalar_opaque × naive | shade × naive | batch × naive | batch_frac × naive |"
+        "| group | naive_glam | scalar | scalar_opaque | scalar_lone | shade | batch | batch_frac | scalar × naive | scalar_opaque × naive | scalar_lone × naive | shade × naive | batch × naive | batch_frac × naive |"
     );
     let _ = writeln!(
         md,
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for (which, label) in [("new", "this run"), ("first", "earlier run")] {
         for (group, n) in [
@@ -512,6 +520,7 @@ fn main() {
                 "naive_glam",
                 "scalar",
                 "scalar_opaque",
+                "scalar_lone",
                 "shade",
                 "batch",
                 "batch_frac",
@@ -523,21 +532,11 @@ fn main() {
                 (Some(a), Some(b)) => Some(a / b),
                 _ => None,
             };
-            let _ = writeln!(
-                md,
-                "| {group} ({label}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                fmt_opt(t[0], 0),
-                fmt_opt(t[1], 0),
-                fmt_opt(t[2], 0),
-                fmt_opt(t[3], 0),
-                fmt_opt(t[4], 0),
-                fmt_opt(t[5], 0),
-                fmt_opt(ratio(1), 2),
-                fmt_opt(ratio(2), 2),
-                fmt_opt(ratio(3), 2),
-                fmt_opt(ratio(4), 2),
-                fmt_opt(ratio(5), 2)
-            );
+            let cells: Vec<String> = (0..t.len())
+                .map(|k| fmt_opt(t[k], 0))
+                .chain((1..t.len()).map(|k| fmt_opt(ratio(k), 2)))
+                .collect();
+            let _ = writeln!(md, "| {group} ({label}) | {} |", cells.join(" | "));
         }
     }
     let _ = writeln!(
@@ -551,8 +550,9 @@ fn main() {
          written into its code; the light's values reach both at run time); `scalar_opaque` is \
          the same loop with each point passed through `black_box`, so that the compiler cannot \
          vectorise across points (one point per call, as a recursive ray tracer or a per-pixel \
-         callback shades); `shade` is the free function per point, which prepares on every call \
-         and takes the light loop.\n",
+         callback shades); `scalar_lone` is that loop with the shader's form for it, \
+         `Shader::one_at_a_time` (the light loop, whose rare cases are branches); `shade` is the \
+         free function per point, which prepares on every call and takes the light loop.\n",
         PowStrategy::cheapest_for_8bit(20.5),
         PowStrategy::cheapest_for_8bit(10.25)
     );
@@ -589,9 +589,9 @@ fn main() {
             );
         }
     }
-    for group in ["raytrace", "fragment"] {
-        let hand = mpts(group, "hand", 4096, "new");
-        let ours = mpts(group, "phong", 4096, "new");
+    for (group, hand_fn, ours_fn) in REAL_SHAPED {
+        let hand = mpts(group, hand_fn, 4096, "new");
+        let ours = mpts(group, ours_fn, 4096, "new");
         // Time ratio phong / hand = throughput ratio hand / phong.
         let r = hand.zip(ours).map(|(h, o)| h / o);
         let status = match r {
@@ -601,7 +601,7 @@ fn main() {
         };
         let _ = writeln!(
             md,
-            "| `phong` time ≤ 1.0× `hand` | {group} | {}× | {status} |",
+            "| `{ours_fn}` time ≤ 1.0× `{hand_fn}` | {group} | {}× | {status} |",
             fmt_opt(r, 2)
         );
     }
@@ -611,14 +611,14 @@ fn main() {
     );
     let _ = writeln!(
         md,
-        "| group | hand (Mpts/s) | phong (Mpts/s) | phong time ÷ hand time |\n|---|---:|---:|---:|"
+        "| group | rows | hand (Mpts/s) | phong (Mpts/s) | phong time ÷ hand time |\n|---|---|---:|---:|---:|"
     );
-    for group in ["raytrace", "fragment"] {
-        let hand = mpts(group, "hand", 4096, "new");
-        let ours = mpts(group, "phong", 4096, "new");
+    for (group, hand_fn, ours_fn) in REAL_SHAPED {
+        let hand = mpts(group, hand_fn, 4096, "new");
+        let ours = mpts(group, ours_fn, 4096, "new");
         let _ = writeln!(
             md,
-            "| {group} | {} | {} | {} |",
+            "| {group} | `{hand_fn}`, `{ours_fn}` | {} | {} | {} |",
             fmt_opt(hand, 1),
             fmt_opt(ours, 1),
             fmt_opt(hand.zip(ours).map(|(h, o)| h / o), 2)
@@ -630,11 +630,18 @@ fn main() {
          three point lights, per-light visibility from shadow rays (a third blocked). `hand` is \
          LearnOpenGL's multiple-lights shader with glam; `phong` is \
          `Shader::with_viewer(..).shade_visible(..)` with `Phong::learnopengl()` (no gate, like \
-         the hand code).\n\
+         the hand code). `with_viewer` returns the one-at-a-time form of the shader.\n\
+         - **raytrace_one_light**: the same hits under the first light alone. With one light \
+         `Shader::new` prepares the branch-free form for vectorised loops; `with_viewer` returns \
+         the one-at-a-time form (before 2026-11-27 the hits took the branch-free form: 1.8× \
+         `hand`'s time in a probe of this loop).\n\
          - **fragment**: 4096 fragments with a diffuse texel, a specular strength, a shininess \
          uniform in [2, 128] and a filtered shadow factor, one point light, a camera at a point. \
-         `phong` is `Shader::shade_surface(..)`.\n\
-         - Both groups assert before timing that the two sides agree within 1e-4 on every input.\n"
+         `phong` is `Shader::shade_surface(..)` in a loop over the fragments' arrays, which the \
+         compiler vectorises on both sides. `hand_callback` and `phong_callback` shade the same \
+         fragments one per call (each position through `black_box`), as a rasterizer's \
+         per-fragment callback does; `phong_callback` uses `Shader::one_at_a_time`.\n\
+         - Every group asserts before timing that the two sides agree within 1e-4 on every input.\n"
     );
     let frame_ms =
         |f: &str| median_ns(&crit_dir().join("raster_frame").join(f), "new").map(|t| t / 1e6);
@@ -682,15 +689,28 @@ fn main() {
          factors the fuzz campaign checks; the one now used scales its operands), a ladder without its stop selects (subnormal \
          products, much slower). A loop the compiler cannot see into (a scene passed in, several \
          lights) is scalar: that is `raytrace` above, against scalar hand-written code.\n\
-         - **`scalar_opaque`**: the one-light path is written for a loop the compiler vectorises, \
-         and one point at a time it costs about four times `naive_glam`. Its full-range \
-         normalisations and fixed-length squaring ladder are branch-free, which lengthens each \
-         point's chain of dependent operations, and a lone point has no neighbours to overlap \
-         with. Measured by swapping parts in a probe: the range-tested normalisations and the \
-         looped ladder of the light loop bring a lone point to about 2.2× `naive_glam`'s time, \
-         but the loop then stops vectorising, and `scalar` falls to the same figure. No single form \
-         found serves both shapes; `scalar`, the README's loop, keeps the vectorised one. Shading \
-         many points from one place is the batch's job (`batch × naive` in the first table).\n\
+         - **`scalar_opaque`** and **`scalar_lone`**: the one-light form that `Shader::new` \
+         prepares is written for a loop the compiler vectorises, and one point at a time it costs \
+         about four times `naive_glam`: its full-range normalisations and fixed-length squaring \
+         ladder are branch-free, which lengthens each point's chain of dependent operations, and \
+         a lone point has no neighbours to overlap with. No single form found serves both shapes \
+         (the range-tested normalisations of the light loop, tried in the one-light form, took \
+         `scalar` from 0.87× to 0.69× in a probe), so there are two: `Shader::one_at_a_time` \
+         (and `with_viewer`, a ray tracer's call per hit) takes the light loop, whose rare cases \
+         are branches the processor predicts (`scalar_lone`). It still runs at a fraction of \
+         `naive_glam`, which the compiler vectorises four points at a time; a one-point-per-call \
+         caller's own code cannot be vectorised either (`raytrace_one_light`, `fragment`'s \
+         callback rows). Shading many points from one place is the batch's job (`batch × naive` \
+         in the first table).\n\
+         - **`raytrace`, `raytrace_one_light`, `phong_callback`**: one point per call. In a \
+         probe of `raytrace_one_light`'s loop (callgrind) `phong` runs 290 instructions a hit \
+         against the hand-written loop's 208 (40 of them in `powf`): the normalisation of the \
+         viewer direction `with_viewer` does (the hand code trusts its ray direction to be \
+         unit), the zero-normal mask of a model without a gate, the squaring ladder's tests of \
+         the exponent's bits, the falloff's form, the colours widened to `Vec3A` per light, and \
+         the saturating `min`s. For a textured fragment (`phong_callback`) the longest part is \
+         `Poly7`'s two dependent polynomials for the point's own exponent: in a probe they took \
+         about 45% of the time, and `powf` in their place cut the point's time by a fifth.\n\
          - **`fragment`**: a shininess per point is a per-lane value in the vectorised loop. \
          `Auto` now takes `Poly7` for a point's own exponent at every value (choosing squaring for \
          whole ones ran both forms at every point), and under a light whose sums are bounded a \
