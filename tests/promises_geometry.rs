@@ -13,7 +13,7 @@
 //! from the crate's expansions: every `f32` is an integer times a power of two, so sums of their
 //! products are exact as wide integers, and rounding them is bit manipulation.
 
-mod strategies;
+use crate::strategies;
 
 use glam::{DVec3, Mat3, Vec3};
 use proptest::prelude::*;

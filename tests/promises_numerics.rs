@@ -11,8 +11,8 @@
 //! `gouraud_error_bound`'s rounding and pow-strategy allowances are tested in
 //! tests/shading_rate.rs, next to the bound's other tests.
 
+use crate::strategies;
 use phong_tools::batch_range;
-mod strategies;
 
 use glam::{DVec3, Vec3};
 use phong::{

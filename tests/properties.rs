@@ -6,7 +6,7 @@
 //! error bound the multiple comes from. "Unit" input vectors are rounded once from `f64`, so
 //! `|‖v‖² − 1| ≤ 3U` (written `η` below).
 
-mod strategies;
+use crate::strategies;
 
 use core::f64::consts::PI;
 

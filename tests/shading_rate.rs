@@ -9,7 +9,7 @@ use phong::{
 };
 use proptest::prelude::*;
 
-mod strategies;
+use crate::strategies;
 use phong_tools::rng::Rng;
 
 /// A point in the cube `[-r, r]³`.

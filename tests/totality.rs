@@ -6,7 +6,7 @@
 //! and `Incidence::new` need unit vectors, the unchecked constructors valid fields); everything
 //! outside it goes to the total or checked variant (`normalize_or_zero`, `try_*`, `shade`).
 
-mod strategies;
+use crate::strategies;
 
 use glam::{Mat3, Vec3};
 use phong::{

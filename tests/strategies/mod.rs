@@ -1,4 +1,4 @@
-//! Named proptest strategies shared by the integration tests (`mod strategies;`).
+//! Named proptest strategies shared by the integration tests (`crate::strategies` in tests/suite.rs).
 //!
 //! Every strategy produces *finite* values in the documented domain of the function under test, so
 //! a failing case is a property violation, not a domain violation. Directions are built in `f64`
