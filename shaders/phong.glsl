@@ -1,7 +1,7 @@
 #version 450 core
 // phong.glsl: GENERATED from shaders/phong.wgsl by naga's GLSL backend; do not edit by hand.
-// Regenerate: PHONG_BLESS_GLSL=1 cargo test --test gpu_layout (tests/gpu_layout.rs checks that this
-// file is current).
+// Regenerate: PHONG_BLESS_GLSL=1 cargo test -p phong --test suite gpu_layout::
+// (tests/gpu_layout.rs checks that this file is current).
 //
 // The `phong` crate's reflection models as a GLSL 4.50 compute shader: the same structs, models,
 // gates and attenuation as phong.wgsl, which gpu-check runs and compares with the CPU. Directions

@@ -28,8 +28,8 @@ fn wgsl() -> Module {
 /// the file is naga's GLSL for `phong.wgsl`, byte for byte.
 const GLSL_HEADER: &str = "\
 // phong.glsl: GENERATED from shaders/phong.wgsl by naga's GLSL backend; do not edit by hand.
-// Regenerate: PHONG_BLESS_GLSL=1 cargo test --test gpu_layout (tests/gpu_layout.rs checks that this
-// file is current).
+// Regenerate: PHONG_BLESS_GLSL=1 cargo test -p phong --test suite gpu_layout::
+// (tests/gpu_layout.rs checks that this file is current).
 //
 // The `phong` crate's reflection models as a GLSL 4.50 compute shader: the same structs, models,
 // gates and attenuation as phong.wgsl, which gpu-check runs and compares with the CPU. Directions
@@ -221,7 +221,7 @@ fn glsl_is_generated_from_the_current_wgsl() {
     assert!(
         got == want,
         "shaders/phong.glsl is not naga's GLSL for the current phong.wgsl; regenerate it with \
-         PHONG_BLESS_GLSL=1 cargo test --test gpu_layout"
+         PHONG_BLESS_GLSL=1 cargo test -p phong --test suite gpu_layout::"
     );
 }
 
