@@ -71,6 +71,19 @@ pub fn normalize_or_zero(v: Vec3) -> Vec3 {
     full_range(v).0
 }
 
+/// `(normalize_or_zero(v), normalize_or_zero(v) != 0)`: the flag costs nothing on the common
+/// path, where the vector is non-zero by the range test, so a caller that masks on a missing
+/// direction (the light loop's zero-normal mask) does not compare three components at every point.
+#[inline(always)]
+pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
+    let l2 = v.length_squared();
+    if in_common_range(l2) {
+        return (v * (1.0 / math::sqrt(l2)), true);
+    }
+    let d = full_range(v).0;
+    (d, d != Vec3::ZERO)
+}
+
 /// `(normalize_or_zero(v), length(v))` for any `v`, inline and without a branch or a call: the
 /// rare cases of the functions here, and the whole of [`normalize_full`].
 ///

@@ -8,7 +8,7 @@ use crate::lobe_pow::{self, LobePow, lobe_power};
 use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
-use crate::normalize::{direction_between, normalize_full, sub_saturating};
+use crate::normalize::{direction_between, normalize_flagged, normalize_full, sub_saturating};
 use crate::normalize_or_zero;
 use crate::pow::{
     P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_split, auto_split_per_point,
@@ -464,11 +464,16 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         if let (Some(one), Some(r)) = (self.one, self.resolved) {
             return self.one_light::<SHARED>(r, surface, one, position, normal, visibility);
         }
-        let n = normalize_or_zero(normal);
+        let (n, n_present) = normalize_flagged(normal);
         let v = self.view_direction(position);
         // One loop per lobe, chosen once per point: each stays small enough to keep its values in
         // registers, where one loop branching per light on the lobe kind spilled to the stack.
-        let pt = Point { position, n, v };
+        let pt = Point {
+            position,
+            n,
+            v,
+            n_present,
+        };
         let (ambient, diffuse, specular) = match self.resolved {
             Some(r) if !M::HAS_SPECULAR || r.lobe == Lobe::None => {
                 self.light_loop::<NO_LOBE>(r, surface, pt, visibility, lobe_pow::NoLobe)
@@ -670,12 +675,17 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         mut visibility: impl Visibility,
         pow: impl LobePow,
     ) -> (Vec3A, Vec3A, Vec3A) {
-        let Point { position, n, v } = pt;
+        let Point {
+            position,
+            n,
+            v,
+            n_present,
+        } = pt;
         let n_dot_v = n.dot(v);
         // A missing direction (zero vector) means no highlight. For Phong a zero L or V already
         // gives a base R·V = 0, so only a zero N needs the mask; Blinn-Phong's (N·H)² needs all
         // three, and L is tested per light below.
-        let present = n != Vec3::ZERO && (LOBE != BLINN || v != Vec3::ZERO);
+        let present = n_present && (LOBE != BLINN || v != Vec3::ZERO);
         let specular_scale = if present { surface.specular.scale } else { 0.0 };
         let sums = (Vec3A::from(self.ambient_light), Vec3A::ZERO, Vec3A::ZERO);
         let k = LightConsts {
@@ -760,8 +770,13 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         pt: Point,
         mut visibility: impl Visibility,
     ) -> (Vec3A, Vec3A, Vec3A) {
-        let Point { position, n, v } = pt;
-        let specular_on = M::HAS_SPECULAR && n != Vec3::ZERO && v != Vec3::ZERO;
+        let Point {
+            position,
+            n,
+            v,
+            n_present,
+        } = pt;
+        let specular_on = M::HAS_SPECULAR && n_present && v != Vec3::ZERO;
         let mut ambient = Vec3A::from(self.ambient_light);
         let mut diffuse = Vec3A::ZERO;
         let mut specular = Vec3A::ZERO;
@@ -812,6 +827,8 @@ struct Point {
     position: Vec3,
     n: Vec3,
     v: Vec3,
+    /// `n != 0`, known without a test on the common path (see [`normalize_flagged`]).
+    n_present: bool,
 }
 
 /// The lobe kinds as const-generic parameters of [`Shader::light_loop`].
