@@ -193,6 +193,18 @@ fn shader_loop<M: phong::ReflectionModel + Default, const OPAQUE: bool, const LO
     }
 }
 
+/// A per-point row's loop: light, material, positions, normals, output.
+type PerPointLoop = fn(&PointLight, &Material, &[Vec3], &[Vec3], &mut [Vec3]);
+
+/// The per-point rows of a group, each with its instance of [`shader_loop`].
+fn per_point_rows<M: phong::ReflectionModel + Default>() -> [(&'static str, PerPointLoop); 3] {
+    [
+        ("scalar", shader_loop::<M, false, false>),
+        ("scalar_opaque", shader_loop::<M, true, false>),
+        ("scalar_lone", shader_loop::<M, true, true>),
+    ]
+}
+
 #[inline(never)]
 fn scalar_loop<M: phong::ReflectionModel>(
     model: &M,
@@ -254,17 +266,11 @@ fn group<M: phong::ReflectionModel + phong::BatchModel + Default>(
     let check = |soa: &mut Soa, scalar: &mut Vec<Vec3>, naive: &mut Vec<Vec3>, s: f32| {
         let m = material(s);
         naive_glam(kind, s, &p, &nn, naive);
-        shader_loop::<M, false, false>(&lights[0], &m, &p, &nn, scalar);
-        for i in 0..n {
-            assert_close("scalar", scalar[i], naive[i], i);
-        }
-        shader_loop::<M, true, false>(&lights[0], &m, &p, &nn, scalar);
-        for i in 0..n {
-            assert_close("scalar_opaque", scalar[i], naive[i], i);
-        }
-        shader_loop::<M, true, true>(&lights[0], &m, &p, &nn, scalar);
-        for i in 0..n {
-            assert_close("scalar_lone", scalar[i], naive[i], i);
+        for (row, run) in per_point_rows::<M>() {
+            run(&lights[0], &m, &p, &nn, scalar);
+            for i in 0..n {
+                assert_close(row, scalar[i], naive[i], i);
+            }
         }
         scalar_loop(&M::default(), &m, &scene, &p, &nn, scalar);
         batch_run(level, &model_with(PowStrategy::Auto), &m, &scene, soa);
@@ -290,39 +296,11 @@ fn group<M: phong::ReflectionModel + phong::BatchModel + Default>(
         b.iter(|| naive_glam(kind, 32.0, black_box(&p), black_box(&nn), &mut naive))
     });
     let model = model_with(PowStrategy::Auto);
-    g.bench_function("scalar", |b| {
-        b.iter(|| {
-            shader_loop::<M, false, false>(
-                black_box(&lights[0]),
-                &m32,
-                black_box(&p),
-                &nn,
-                &mut scalar,
-            )
-        })
-    });
-    g.bench_function("scalar_opaque", |b| {
-        b.iter(|| {
-            shader_loop::<M, true, false>(
-                black_box(&lights[0]),
-                &m32,
-                black_box(&p),
-                &nn,
-                &mut scalar,
-            )
-        })
-    });
-    g.bench_function("scalar_lone", |b| {
-        b.iter(|| {
-            shader_loop::<M, true, true>(
-                black_box(&lights[0]),
-                &m32,
-                black_box(&p),
-                &nn,
-                &mut scalar,
-            )
-        })
-    });
+    for (row, run) in per_point_rows::<M>() {
+        g.bench_function(row, |b| {
+            b.iter(|| run(black_box(&lights[0]), &m32, black_box(&p), &nn, &mut scalar))
+        });
+    }
     g.bench_function("shade", |b| {
         b.iter(|| {
             scalar_loop(
