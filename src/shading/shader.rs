@@ -254,7 +254,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     ///
     /// The shader it returns is also [`one_at_a_time`](Self::one_at_a_time), the faster form
     /// where each call shades one hit: a viewer that changes per point belongs to a ray tracer,
-    /// whose recursion the compiler cannot vectorise.
+    /// whose recursion the compiler cannot vectorise. A loop over arrays under one fixed viewer
+    /// should put that viewer in the [`Scene`] given to [`new`](Self::new) instead, which keeps
+    /// the form the compiler vectorises.
     ///
     /// ```
     /// use glam::{Vec3, Vec3A};
