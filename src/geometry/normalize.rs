@@ -64,11 +64,7 @@ fn rescaled(v: Vec3) -> Vec3 {
 #[must_use]
 #[inline(always)]
 pub fn normalize_or_zero(v: Vec3) -> Vec3 {
-    let l2 = v.length_squared();
-    if in_common_range(l2) {
-        return v * (1.0 / math::sqrt(l2));
-    }
-    full_range(v).0
+    normalize_flagged(v).0
 }
 
 /// `(normalize_or_zero(v), normalize_or_zero(v) != 0)`: the flag costs nothing on the common

@@ -299,8 +299,11 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// for bit wherever no squared length under- or overflows `f32` (tests/shader.rs), and the
     /// same guarantees. [`with_viewer`](Self::with_viewer) returns this form already.
     ///
-    /// docs/performance.md measures both forms in both kinds of loop (`scalar` and
-    /// `scalar_opaque`, `raytrace_one_light`).
+    /// **Domain and degenerate input:** as [`shade`](crate::shade); every method of the returned
+    /// shader keeps its documented answers (no NaN and no panic from finite input).
+    ///
+    /// docs/performance.md measures both forms in both kinds of loop (`scalar`, `scalar_opaque`
+    /// and `scalar_lone`, `raytrace_one_light`).
     ///
     /// ```
     /// use glam::Vec3;
