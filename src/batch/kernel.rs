@@ -616,22 +616,33 @@ fn pow<S: Simd, const CALLS: bool>(s: S, plan: PowPlan, flush: f32, x: S::V) -> 
     s.keep(s.gt(x, s.splat(0.0)), r)
 }
 
-/// A chunk's per-point surface, sanitised as [`Shader::shade_surface`] does: reflectances, and
-/// each lane's specular scale and exponent.
+/// A chunk's per-point lobe, sanitised as [`Shader::shade_surface`] does: each lane's specular
+/// scale and exponent. The reflectances are loaded apart ([`reflectances`]), after the light
+/// sums: loaded with these, their nine vectors were live across the whole light loop, and the
+/// AVX2 level (sixteen registers, two per vector of sixteen lanes) kept them on the stack. Loaded
+/// after, `shade_gbuffer` ran about a fifth faster there (`gbuffer_4096`).
 pub(crate) struct SurfaceV<S: Simd> {
-    ka: [S::V; 3],
-    kd: [S::V; 3],
-    ks: [S::V; 3],
     scale: S::V,
     /// The lobe's exponent per lane (half the shininess for Blinn-Phong), evaluated by the
     /// polynomial at every value, as `auto_split_per_point` plans it for one point.
     exponent: S::V,
 }
 
+/// Loads one of `inputs`' ten surface values at points `i..i + count` in every lane: the
+/// surface's slice, or the material's value where the call has an albedo alone (a macro, not a
+/// closure: a closure may be left out of line, without the level's features).
+macro_rules! surface_lanes {
+    ($s:expr, $inputs:expr, $i:expr, $count:expr, $a:expr) => {
+        match $inputs.surface {
+            Some(slices) => $s.load(&load_tail(slices[$a], $i, $count)),
+            None => $s.splat($inputs.base[$a]),
+        }
+    };
+}
+
 impl<S: Simd> SurfaceV<S> {
-    /// Points `i..i + count` of `inputs`' per-point surface (the material's values where the
-    /// call has an albedo alone), each slice loaded as one vector and sanitised in it (`clean`);
-    /// `None` without a per-point surface or albedo.
+    /// Points `i..i + count` of `inputs`' per-point lobe; `None` without a per-point surface or
+    /// albedo.
     #[inline(always)]
     fn load(
         s: S,
@@ -640,55 +651,68 @@ impl<S: Simd> SurfaceV<S> {
         i: usize,
         count: usize,
     ) -> Option<Self> {
-        if inputs.surface.is_none() && inputs.albedo.is_none() {
+        if !inputs.per_point_surface() {
             return None;
         }
-        // Macros, not closures: a closure may be left out of line, without the level's features.
-        macro_rules! raw {
-            ($a:expr) => {
-                match inputs.surface {
-                    Some(slices) => s.load(&load_tail(slices[$a], i, count)),
-                    None => s.splat(inputs.base[$a]),
-                }
-            };
-        }
-        // The decoded texel multiplies Ka and Kd before they are sanitised, as the scalar path
-        // orders it (`PointInputs::surface`, then `Shader::shade_surface`).
-        let albedo = match inputs.albedo {
-            Some(albedo) => {
-                let mut lanes = [[1.0f32; W]; 3];
-                for (lane, texel) in albedo[i..i + count].iter().enumerate() {
-                    for (c, l) in lanes.iter_mut().enumerate() {
-                        l[lane] = crate::srgb8_to_linear(texel[c]);
-                    }
-                }
-                Some([s.load(&lanes[0]), s.load(&lanes[1]), s.load(&lanes[2])])
-            }
-            None => None,
-        };
-        macro_rules! tinted {
-            ($a:expr) => {
-                match albedo {
-                    Some(x) => clean(s, s.mul(raw!($a), x[$a % 3])),
-                    None => clean(s, raw!($a)),
-                }
-            };
-        }
-        let sh = clean(s, raw!(9));
+        let sh = clean(s, surface_lanes!(s, inputs, i, count, 9));
         let scale = match lm.normalization {
             Normalization::None if lm.lobe != Lobe::None => s.splat(1.0),
             _ => s.load(&lane_scales(lm, &s.store(sh))),
         };
         let half = if lm.lobe == Lobe::Blinn { 0.5 } else { 1.0 };
         Some(SurfaceV {
-            ka: [tinted!(0), tinted!(1), tinted!(2)],
-            kd: [tinted!(3), tinted!(4), tinted!(5)],
-            ks: [clean(s, raw!(6)), clean(s, raw!(7)), clean(s, raw!(8))],
             scale,
             // `auto_split_per_point`'s exponent, lane by lane.
             exponent: clean(s, s.mul(s.splat(half), sh)),
         })
     }
+}
+
+/// Points `i..i + count` of `inputs`' per-point reflectances `[Ka, Kd, Ks]` (the material's values
+/// where the call has an albedo alone), sanitised as [`Shader::shade_surface`] does (`clean`);
+/// `None` without a per-point surface or albedo.
+#[inline(always)]
+fn reflectances<S: Simd>(
+    s: S,
+    inputs: &PointInputs<'_>,
+    i: usize,
+    count: usize,
+) -> Option<[[S::V; 3]; 3]> {
+    if !inputs.per_point_surface() {
+        return None;
+    }
+    // The decoded texel multiplies Ka and Kd before they are sanitised, as the scalar path
+    // orders it (`PointInputs::surface`, then `Shader::shade_surface`).
+    let albedo = match inputs.albedo {
+        Some(albedo) => {
+            let mut lanes = [[1.0f32; W]; 3];
+            for (lane, texel) in albedo[i..i + count].iter().enumerate() {
+                for (c, l) in lanes.iter_mut().enumerate() {
+                    l[lane] = crate::srgb8_to_linear(texel[c]);
+                }
+            }
+            Some([s.load(&lanes[0]), s.load(&lanes[1]), s.load(&lanes[2])])
+        }
+        None => None,
+    };
+    macro_rules! tinted {
+        ($a:expr) => {
+            match albedo {
+                Some(x) => clean(s, s.mul(surface_lanes!(s, inputs, i, count, $a), x[$a % 3])),
+                None => clean(s, surface_lanes!(s, inputs, i, count, $a)),
+            }
+        };
+    }
+    macro_rules! plain {
+        ($a:expr) => {
+            clean(s, surface_lanes!(s, inputs, i, count, $a))
+        };
+    }
+    Some([
+        [tinted!(0), tinted!(1), tinted!(2)],
+        [tinted!(3), tinted!(4), tinted!(5)],
+        [plain!(6), plain!(7), plain!(8)],
+    ])
 }
 
 /// `v` with NaN and negatives as 0 and values past `f32::MAX` as `f32::MAX` (`Material::new`'s
@@ -1071,7 +1095,7 @@ fn finish<S: Simd, const FOLDED: bool>(
     s: S,
     terms: bool,
     k: &Setup<'_>,
-    surface: Option<&SurfaceV<S>>,
+    reflectances: Option<&[[S::V; 3]; 3]>,
     sums: [[S::V; 3]; 3],
 ) -> [[S::V; 3]; 3] {
     let max = s.splat(math::MAX);
@@ -1087,8 +1111,8 @@ fn finish<S: Simd, const FOLDED: bool>(
     let ke = k.material.emission();
     let mut rows = [[zero; 3]; 3];
     for c in 0..3 {
-        let (ka, kd, ks) = match surface {
-            Some(sf) => (sf.ka[c], sf.kd[c], sf.ks[c]),
+        let (ka, kd, ks) = match reflectances {
+            Some(r) => (r[0][c], r[1][c], r[2][c]),
             None => (
                 s.splat(k.material.ambient()[c]),
                 s.splat(k.material.diffuse()[c]),
@@ -1201,8 +1225,14 @@ where
         surface.as_ref(),
         visibility,
     );
+    // The reflectances only now, after the sums (see `SurfaceV`).
+    let reflectances = if SURFACE {
+        reflectances(s, inputs, i, count)
+    } else {
+        None
+    };
     (
-        finish::<S, FOLDED>(s, terms, k, surface.as_ref(), sums),
+        finish::<S, FOLDED>(s, terms, k, reflectances.as_ref(), sums),
         bad,
     )
 }
