@@ -555,7 +555,19 @@ impl Attenuation {
     #[must_use]
     #[inline(always)]
     pub fn factor(&self, d: f32) -> f32 {
-        let d = math::clamp_or_lo(d, 0.0, math::MAX);
+        self.factor_of_length(math::clamp_or_lo(d, 0.0, math::MAX))
+    }
+
+    /// [`factor`](Self::factor) at a distance `d ∈ [0, f32::MAX]` that the crate computed (a
+    /// saturated length, never NaN), without `factor`'s clamp of `d`: what a light's
+    /// [`sample`](crate::LightSource::sample) calls, once per light and point. Debug builds
+    /// assert the domain.
+    #[inline(always)]
+    pub(crate) fn factor_of_length(&self, d: f32) -> f32 {
+        debug_assert!(
+            (0.0..=math::MAX).contains(&d),
+            "a light's distance must lie in [0, f32::MAX], got {d}"
+        );
         match *self {
             Attenuation::None => 1.0,
             Attenuation::Polynomial {
@@ -570,11 +582,9 @@ impl Attenuation {
                     // A coefficient near f32::MAX: 1/∞ = 0 would lose a representable factor.
                     return polynomial_overflowed(constant, linear, quadratic, d);
                 }
-                math::clamp_or_lo(
-                    1.0 / math::max_or(den, Self::MIN_DENOMINATOR),
-                    0.0,
-                    math::MAX,
-                )
+                // `max_or` maps every `den` (NaN from coefficients outside the domain included) to
+                // at least MIN_DENOMINATOR, so the quotient lies in (0, 1e4]: no clamp needed.
+                1.0 / math::max_or(den, Self::MIN_DENOMINATOR)
             }
             // The other forms run out of line, so shading loops inline only the common two.
             _ => self.factor_other(d),

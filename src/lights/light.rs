@@ -463,7 +463,7 @@ impl LightSource for PointLight {
         let (direction, d) = direction_and_distance(self.position, p);
         LightSample {
             direction,
-            factor: self.attenuation.factor(d),
+            factor: self.attenuation.factor_of_length(d),
         }
     }
 }
