@@ -13,6 +13,31 @@ use crate::pow::{PolyConsts, PowPlan, auto_pow, auto_pow_fixed, pow_u32, pow_u32
 pub(crate) trait LobePow: Copy {
     /// `x^e` for `x ∈ [0, 1]`.
     fn pow(self, x: f32) -> f32;
+
+    /// The lobe for a raw base `x` (any value, NaN included): `pow(min(x, 1))` where `x > 0`, else
+    /// 0. This default is written without a branch in `x`, for the forms a loop over points
+    /// vectorises: `pow` runs on the clamped base and is selected away. The forms for one point
+    /// at a time override it with a branch (see [`lobe_by_branch`]).
+    #[inline(always)]
+    fn lobe(self, x: f32) -> f32 {
+        let p = self.pow(math::clamp_or_lo(x, 0.0, 1.0));
+        if x > 0.0 { p } else { 0.0 }
+    }
+}
+
+/// The lobe of a base `x` as [`LobePow::lobe`] defines it, for code that shades one point at a
+/// time: `x ≤ 0` (about half of all bases) skips `pow` by a branch. A select there made the
+/// processor evaluate the power at every point (for a per-point exponent, the polynomial's two
+/// chains), and where LLVM paired the clamp's `max` with the visibility's clamp (SLP), the pair
+/// became a mask move and three branches per light. Measured on probes of a textured fragment
+/// callback and a three-light ray tracer (x86-64 baseline, callgrind and timing).
+#[inline(always)]
+fn lobe_by_branch(x: f32, pow: impl Fn(f32) -> f32) -> f32 {
+    if x > 0.0 {
+        pow(math::min_or(x, 1.0))
+    } else {
+        0.0
+    }
 }
 
 /// No specular lobe: never read.
@@ -38,6 +63,11 @@ impl LobePow for Auto {
     #[inline(always)]
     fn pow(self, x: f32) -> f32 {
         auto_pow(x, self.n, self.frac)
+    }
+
+    #[inline(always)]
+    fn lobe(self, x: f32) -> f32 {
+        lobe_by_branch(x, |b| auto_pow(b, self.n, self.frac))
     }
 }
 
@@ -65,6 +95,11 @@ impl LobePow for Squaring {
     #[inline(always)]
     fn pow(self, x: f32) -> f32 {
         pow_u32(x, self.0)
+    }
+
+    #[inline(always)]
+    fn lobe(self, x: f32) -> f32 {
+        lobe_by_branch(x, |b| pow_u32(b, self.0))
     }
 }
 
@@ -103,15 +138,8 @@ impl LobePow for Plan {
 }
 
 /// `base^e` through `pow` for a lobe base: `x ≤ 0` or NaN gives 0, `x ≥ 1` gives `pow(1)` (so
-/// `0^0 = 0`). Branch-free in `x`: `pow` runs on `min(x, 1)` and is selected away where `x ≤ 0`.
-///
-/// Only the upper bound is applied before `pow`: a base `≤ 0` (or NaN, which `min_or` reads as 1)
-/// gives some finite or NaN power that the select discards, and every `LobePow` is arithmetic
-/// alone (no panic, no loop on the value). The lower bound's `max`, paired by LLVM's SLP
-/// vectoriser with the visibility's clamp in the light loop, became a two-lane compare, a mask
-/// move and three branches per light (callgrind of a ray tracer's loop, x86-64 baseline).
+/// `0^0 = 0`), by the plan's [`lobe`](LobePow::lobe).
 #[inline(always)]
 pub(crate) fn lobe_power(x: f32, pow: impl LobePow) -> f32 {
-    let p = pow.pow(math::min_or(x, 1.0));
-    if x > 0.0 { p } else { 0.0 }
+    pow.lobe(x)
 }
