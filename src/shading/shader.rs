@@ -4,7 +4,7 @@ use glam::{Vec3, Vec3A};
 
 use crate::incidence::Incidence;
 use crate::light::{FlatLight, LightSource, sanitize_colour};
-use crate::lobe_pow::{self, LobePow, lobe_power};
+use crate::lobe_pow::{self, LobePow, lobe_power, lobe_power_selected};
 use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
@@ -749,7 +749,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             }
             BLINN => {
                 let base = n_dot_h_squared(n, l, v);
-                let ws = specular_scale * r.gate(n_dot_l) * lobe_power(base, pow);
+                let ws = specular_scale * r.gate(n_dot_l) * lobe_power_selected(base, pow);
                 if l != Vec3::ZERO { ws } else { 0.0 }
             }
             _ => 0.0,
