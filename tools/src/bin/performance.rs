@@ -702,15 +702,23 @@ fn main() {
          caller's own code cannot be vectorised either (`raytrace_one_light`, `fragment`'s \
          callback rows). Shading many points from one place is the batch's job (`batch × naive` \
          in the first table).\n\
-         - **`raytrace`, `raytrace_one_light`, `phong_callback`**: one point per call. In a \
-         probe of `raytrace_one_light`'s loop (callgrind) `phong` runs 290 instructions a hit \
-         against the hand-written loop's 208 (40 of them in `powf`): the normalisation of the \
-         viewer direction `with_viewer` does (the hand code trusts its ray direction to be \
-         unit), the zero-normal mask of a model without a gate, the squaring ladder's tests of \
-         the exponent's bits, the falloff's form, the colours widened to `Vec3A` per light, and \
-         the saturating `min`s. For a textured fragment (`phong_callback`) the longest part is \
-         `Poly7`'s two dependent polynomials for the point's own exponent: in a probe they took \
-         about 45% of the time, and `powf` in their place cut the point's time by a fifth.\n\
+         - **`raytrace`, `raytrace_one_light`, `phong_callback`**: one point per call. About \
+         half of all lobe bases are `≤ 0`, at random. Until 2026-11-28 the light loop evaluated \
+         the power at every point and selected it away: for a textured fragment's own exponent \
+         that is `Poly7`'s two dependent polynomials, and LLVM had paired the base's clamp with \
+         the visibility's into a mask move and three data-dependent branches per light. Now a \
+         Phong base `≤ 0` skips the power by a branch (Blinn-Phong, whose `(N·H)²` is exactly 0 \
+         there, keeps a select marked unpredictable: the branch measured slower), and a light's \
+         sample no longer clamps a distance it computed itself. On probes of these loops \
+         (4096 points, tenth percentile of 2000 interleaved runs): three lights 1.17× → \
+         0.92–0.98× the hand-written time, one light 1.09× → about 0.97×, the fragment callback \
+         1.5× → 0.94–1.10×. With three lights the probe now runs 532 instructions a hit \
+         against the hand-written loop's 535 (631 before): `phong` skips the ladder where the \
+         base is `≤ 0` and its `powf` costs the hand-written loop more than the ladder, while \
+         `phong` still does work the hand code does not: the normalisation of the viewer \
+         direction `with_viewer` does (the hand code trusts its ray direction to be unit), the \
+         squaring ladder's tests of the exponent's bits, the falloff's form, the colours widened \
+         to `Vec3A` per light, and the saturating `min`s.\n\
          - **`fragment`**: a shininess per point is a per-lane value in the vectorised loop. \
          `Auto` now takes `Poly7` for a point's own exponent at every value (choosing squaring for \
          whole ones ran both forms at every point), and under a light whose sums are bounded a \
@@ -817,7 +825,11 @@ fn main() {
          linear `f32` reflectances. The last pair writes the three terms apart (`SoaTerms`: nine \
          `f32` slices, 36 bytes a point against the total's 12).\n\n\
          Why it is slower than one material: a per-point surface is ten more vectors to load and \
-         sanitise per chunk, its `Auto` pow is the polynomial in every lane (a point's own \
+         sanitise per chunk (since 2026-11-28 the nine reflectances are loaded after the light \
+         sums: loaded before, the AVX2 level kept them on the stack across the light loop, about \
+         a fifth of `shade_gbuffer`'s time; a probe still counted about 58 instructions a point \
+         against `batch_frac`'s 36 before that change, 12 of them moves to and from the stack, \
+         where each 16-lane vector takes two of AVX2's sixteen registers), its `Auto` pow is the polynomial in every lane (a point's own \
          exponent, whole or not), it keeps \
          the three light sums apart per channel (nine accumulators) instead of the one folded sum \
          a single material allows, and the 8-bit encoding adds three polynomial powers a point \
