@@ -17,7 +17,8 @@ pub(crate) trait LobePow: Copy {
     /// The lobe for a raw base `x` (any value, NaN included): `pow(min(x, 1))` where `x > 0`, else
     /// 0. This default is written without a branch in `x`, for the forms a loop over points
     /// vectorises: `pow` runs on the clamped base and is selected away. The forms for one point
-    /// at a time override it with a branch (see [`lobe_by_branch`]).
+    /// at a time override it with a branch (see [`lobe_by_branch`]); Blinn-Phong's light loop
+    /// calls [`lobe_power_selected`] instead, a select the compiler keeps.
     #[inline(always)]
     fn lobe(self, x: f32) -> f32 {
         let p = self.pow(math::clamp_or_lo(x, 0.0, 1.0));
