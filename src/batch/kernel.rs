@@ -28,9 +28,9 @@
 use glam::Vec3;
 
 use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
-use super::simd::Simd;
+use super::simd::{Kernels, Simd};
 use super::sink::Sink;
-use super::soa::{SoaRgb, SoaTerms, SoaVec3};
+use super::soa::{SoaRgb, SoaVec3};
 use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
 use crate::light::SpotLight;
@@ -1132,43 +1132,37 @@ fn finish<S: Simd, const FOLDED: bool>(
 }
 
 /// Runs the kernel at level `S` over the common prefix of the slices; returns its length.
-/// `INPUTS` says whether `inputs` may hold per-point inputs: each level compiles both as separate
-/// functions, so the plain calls' loop is not grown by the G-buffer's instances.
+/// `INPUTS` says whether `inputs` may hold per-point inputs. Each combination of the call's
+/// parameters is a separate instance of [`run_with`], compiled for the level as a function of
+/// its own ([`Kernels::instance`]); this picks it, once per call.
 #[inline(always)]
-pub(crate) fn run<S: Simd, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>) -> usize {
+pub(crate) fn run<S: Kernels, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>) -> usize {
     if !INPUTS {
         return match (job.setup.folded, job.setup.calls_out) {
-            (true, false) => run_with::<S, _, true, false, false, false>(s, job),
-            (true, true) => run_with::<S, _, true, true, false, false>(s, job),
-            (false, false) => run_with::<S, _, false, false, false, false>(s, job),
-            (false, true) => run_with::<S, _, false, true, false, false>(s, job),
+            (true, false) => s.instance::<O, true, false, false, false>(job),
+            (true, true) => s.instance::<O, true, true, false, false>(job),
+            (false, false) => s.instance::<O, false, false, false, false>(job),
+            (false, true) => s.instance::<O, false, true, false, false>(job),
         };
     }
     // A per-point surface without visibilities runs the instance with both, its visibilities
     // read as 1 (`PointInputs::visibility`): `f·clamp(1, 0, 1)` is `f`, so the bits are those
     // of an instance without them, and the build compiles one kernel fewer per level and sink.
     match job.inputs.per_point_surface() {
-        false if job.setup.folded => run_with::<S, _, true, true, false, true>(s, job),
-        false => run_with::<S, _, false, true, false, true>(s, job),
-        true => run_with::<S, _, false, true, true, true>(s, job),
+        false if job.setup.folded => s.instance::<O, true, true, false, true>(job),
+        false => s.instance::<O, false, true, false, true>(job),
+        true => s.instance::<O, false, true, true, true>(job),
     }
-}
-
-/// [`run`] writing the three terms: one instance per level, which reads per-point surfaces and
-/// visibilities when the call has them (and the material's values and full visibility when it
-/// has not), and never folds the products (the terms must stay apart).
-#[inline(always)]
-pub(crate) fn run_terms<S: Simd>(s: S, job: Job<'_, SoaTerms<'_>>) -> usize {
-    run_general(s, job)
 }
 
 /// The general instance, for any job and sink: products not folded (valid whatever the scene's
 /// magnitudes), per-lane calls allowed, and per-point surfaces and visibilities read where the
 /// call has them (the material's values and full visibility where it has not). [`run`]'s other
-/// instances are this one specialised; their results differ from it only by rounding.
+/// instances are this one specialised; their results differ from it only by rounding. It is
+/// the one instance that writes the three terms.
 #[inline(always)]
-pub(crate) fn run_general<S: Simd, O: Sink>(s: S, job: Job<'_, O>) -> usize {
-    run_with::<S, _, false, true, true, true>(s, job)
+pub(crate) fn run_general<S: Kernels, O: Sink>(s: S, job: Job<'_, O>) -> usize {
+    s.instance::<O, false, true, true, true>(job)
 }
 
 /// Whether a call has per-point inputs (a G-buffer's surfaces or visibilities).
@@ -1240,7 +1234,7 @@ where
 /// [`run`] for one combination: `SURFACE` and `VISIBILITY` say which of `inputs` are present;
 /// the sink `O` says whether the terms or their total are written.
 #[inline(always)]
-fn run_with<
+pub(crate) fn run_with<
     S,
     O: Sink,
     const FOLDED: bool,

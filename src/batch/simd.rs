@@ -109,6 +109,20 @@ pub(crate) trait Kernels: Copy {
     /// Runs the kernel writing the three terms (one instance per level; see
     /// [`run_terms`](super::kernel::run_terms)).
     fn run_terms(self, job: super::kernel::Job<'_, super::soa::SoaTerms<'_>>) -> usize;
+
+    /// Runs [`run_with`](super::kernel::run_with)'s instance for these parameters, compiled
+    /// for the level as a function of its own (a level that keeps only the general instance
+    /// runs that one: its results differ from the others' only by rounding).
+    fn instance<
+        O: super::sink::Sink,
+        const FOLDED: bool,
+        const CALLS: bool,
+        const SURFACE: bool,
+        const VISIBILITY: bool,
+    >(
+        self,
+        job: super::kernel::Job<'_, O>,
+    ) -> usize;
 }
 
 /// A level's entry: `kernel`, the loop compiled for the level, and the token's `run`, which calls
@@ -119,63 +133,68 @@ pub(crate) trait Kernels: Copy {
 /// own instructions, called plainly. Either way the kernel is kept out of line.
 macro_rules! level_entry {
     ($level:ident $(, features = $features:literal)?) => {
-        /// The kernel compiled for this level.
+        /// One instance of the kernel compiled for this level. Each instance is its own
+        /// function: inlined together, a level's seven instances made functions too large for
+        /// LLVM's passes, whose time grows faster than the code (the library's build took twice
+        /// as long).
         $(#[target_feature(enable = $features)])?
         #[inline(never)]
-        fn kernel<O: $crate::batch::sink::Sink, const INPUTS: bool>(
+        fn kernel<
+            O: $crate::batch::sink::Sink,
+            const FOLDED: bool,
+            const CALLS: bool,
+            const SURFACE: bool,
+            const VISIBILITY: bool,
+        >(
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run::<$level, O, INPUTS>(t, job)
-        }
-
-        /// The terms kernel compiled for this level.
-        $(#[target_feature(enable = $features)])?
-        #[inline(never)]
-        fn kernel_terms(
-            t: $level,
-            job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
-        ) -> usize {
-            $crate::batch::kernel::run_terms::<$level>(t, job)
-        }
-
-        /// `kernel` with or without per-point inputs, as the job has them.
-        #[inline(always)]
-        fn run_total<O: $crate::batch::sink::Sink>(
-            t: $level,
-            job: $crate::batch::kernel::Job<'_, O>,
-        ) -> usize {
-            let inputs = $crate::batch::kernel::has_inputs(job.inputs);
-            level_entry!(@call $($features)?; if inputs {
-                kernel::<O, true>(t, job)
-            } else {
-                kernel::<O, false>(t, job)
-            })
+            $crate::batch::kernel::run_with::<$level, O, FOLDED, CALLS, SURFACE, VISIBILITY>(
+                t, job,
+            )
         }
 
         // The entries are not generic, so the kernels are compiled once, in this crate, and not
         // again in every crate that calls the batch API.
         impl $crate::batch::simd::Kernels for $level {
             fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
-                run_total(self, job)
+                if $crate::batch::kernel::has_inputs(job.inputs) {
+                    $crate::batch::kernel::run::<_, _, true>(self, job)
+                } else {
+                    $crate::batch::kernel::run::<_, _, false>(self, job)
+                }
             }
 
-            // 8-bit output is the G-buffer's: one instance, the one with per-point inputs, runs
-            // every call (without inputs their visibilities read as 1 and the material is the
-            // surface), so the build compiles four kernels fewer per level. A plain call pays
-            // the visibility's load and two products per light and chunk.
+            // 8-bit output is the G-buffer's: only the instances with per-point inputs run
+            // (without inputs their visibilities read as 1 and the material is the surface),
+            // so the build compiles four kernels fewer per level. A plain call pays the
+            // visibility's load and two products per light and chunk.
             fn run_pixels(
                 self,
                 job: $crate::batch::kernel::Job<'_, $crate::batch::sink::Pixels8<'_>>,
             ) -> usize {
-                level_entry!(@call $($features)?; kernel::<_, true>(self, job))
+                $crate::batch::kernel::run::<_, _, true>(self, job)
             }
 
             fn run_terms(
                 self,
                 job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
             ) -> usize {
-                level_entry!(@call $($features)?; kernel_terms(self, job))
+                $crate::batch::kernel::run_general(self, job)
+            }
+
+            #[inline]
+            fn instance<
+                O: $crate::batch::sink::Sink,
+                const FOLDED: bool,
+                const CALLS: bool,
+                const SURFACE: bool,
+                const VISIBILITY: bool,
+            >(
+                self,
+                job: $crate::batch::kernel::Job<'_, O>,
+            ) -> usize {
+                level_entry!(@call $($features)?; kernel::<O, FOLDED, CALLS, SURFACE, VISIBILITY>(self, job))
             }
         }
     };
@@ -189,7 +208,7 @@ macro_rules! level_entry {
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_general::<$level, O>(t, job)
+            $crate::batch::kernel::run_with::<$level, O, false, true, true, true>(t, job)
         }
 
         impl $crate::batch::simd::Kernels for $level {
@@ -207,6 +226,20 @@ macro_rules! level_entry {
             fn run_terms(
                 self,
                 job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
+            ) -> usize {
+                kernel(self, job)
+            }
+
+            // Every instance is the general one.
+            fn instance<
+                O: $crate::batch::sink::Sink,
+                const FOLDED: bool,
+                const CALLS: bool,
+                const SURFACE: bool,
+                const VISIBILITY: bool,
+            >(
+                self,
+                job: $crate::batch::kernel::Job<'_, O>,
             ) -> usize {
                 kernel(self, job)
             }
