@@ -125,18 +125,17 @@ pub(crate) trait Kernels: Copy {
     ) -> usize;
 }
 
-/// A level's entry: `kernel`, the loop compiled for the level, and the token's `run`, which calls
-/// it with or without per-point inputs (two functions, so the plain calls' loop is not grown by
-/// the G-buffer's instances). With a feature list the kernel is compiled inside
-/// `#[target_feature]`, and `run` calls it in an `unsafe` block whose proof is the token: it
-/// exists only where the CPU has every feature listed. Without one, the kernel is the build's
-/// own instructions, called plainly. Either way the kernel is kept out of line.
+/// A level's entry: `kernel`, the loop compiled for the level, one function per instance, and
+/// the token's [`Kernels`], whose `instance` calls it (the token's `run`, `run_pixels` and
+/// `run_terms` pick the instance once per call). With a feature list the kernel is compiled
+/// inside `#[target_feature]`, and `instance` calls it in an `unsafe` block whose proof is the
+/// token: it exists only where the CPU has every feature listed. Without one, the kernel is the
+/// build's own instructions, called plainly. Either way the kernel is kept out of line.
 macro_rules! level_entry {
     ($level:ident $(, features = $features:literal)?) => {
         /// One instance of the kernel compiled for this level. Each instance is its own
-        /// function: inlined together, a level's seven instances made functions too large for
-        /// LLVM's passes, whose time grows faster than the code (the library's build took twice
-        /// as long).
+        /// function: inlined together, a level's instances made one function per output form
+        /// whose stack frame, in a build at opt-level 0, outgrew a spawned thread's stack.
         $(#[target_feature(enable = $features)])?
         #[inline(never)]
         fn kernel<
@@ -154,8 +153,29 @@ macro_rules! level_entry {
             )
         }
 
-        // The entries are not generic, so the kernels are compiled once, in this crate, and not
-        // again in every crate that calls the batch API.
+        level_entry!(@impl $level, |t, job| level_entry!(@call $($features)?;
+            kernel::<O, FOLDED, CALLS, SURFACE, VISIBILITY>(t, job)));
+    };
+    // A level that runs only when a caller forces it: one instance per output form, the general
+    // one (no folding, per-point inputs read where the call has them), so the build compiles
+    // three kernels for the level instead of eleven. See `portable.rs` for where this applies.
+    ($level:ident, general_only) => {
+        /// The kernel compiled for this level: the general instance.
+        #[inline(never)]
+        fn kernel<O: $crate::batch::sink::Sink>(
+            t: $level,
+            job: $crate::batch::kernel::Job<'_, O>,
+        ) -> usize {
+            $crate::batch::kernel::run_with::<$level, O, false, true, true, true>(t, job)
+        }
+
+        // Every instance is the general one.
+        level_entry!(@impl $level, |t, job| kernel(t, job));
+    };
+    // The token's `Kernels`, whose `instance` is `$call` (with the token as `$t` and the job as
+    // `$job`). The entries are not generic, so the kernels are compiled once, in this crate, and
+    // not again in every crate that calls the batch API.
+    (@impl $level:ident, |$t:ident, $job:ident| $call:expr) => {
         impl $crate::batch::simd::Kernels for $level {
             fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
                 if $crate::batch::kernel::has_inputs(job.inputs) {
@@ -192,56 +212,10 @@ macro_rules! level_entry {
                 const VISIBILITY: bool,
             >(
                 self,
-                job: $crate::batch::kernel::Job<'_, O>,
+                $job: $crate::batch::kernel::Job<'_, O>,
             ) -> usize {
-                level_entry!(@call $($features)?; kernel::<O, FOLDED, CALLS, SURFACE, VISIBILITY>(self, job))
-            }
-        }
-    };
-    // A level that runs only when a caller forces it: one instance per output form, the general
-    // one (no folding, per-point inputs read where the call has them), so the build compiles
-    // three kernels for the level instead of eleven. See `portable.rs` for where this applies.
-    ($level:ident, general_only) => {
-        /// The kernel compiled for this level: the general instance.
-        #[inline(never)]
-        fn kernel<O: $crate::batch::sink::Sink>(
-            t: $level,
-            job: $crate::batch::kernel::Job<'_, O>,
-        ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, false, true, true, true>(t, job)
-        }
-
-        impl $crate::batch::simd::Kernels for $level {
-            fn run(self, job: $crate::batch::kernel::Job<'_>) -> usize {
-                kernel(self, job)
-            }
-
-            fn run_pixels(
-                self,
-                job: $crate::batch::kernel::Job<'_, $crate::batch::sink::Pixels8<'_>>,
-            ) -> usize {
-                kernel(self, job)
-            }
-
-            fn run_terms(
-                self,
-                job: $crate::batch::kernel::Job<'_, $crate::batch::soa::SoaTerms<'_>>,
-            ) -> usize {
-                kernel(self, job)
-            }
-
-            // Every instance is the general one.
-            fn instance<
-                O: $crate::batch::sink::Sink,
-                const FOLDED: bool,
-                const CALLS: bool,
-                const SURFACE: bool,
-                const VISIBILITY: bool,
-            >(
-                self,
-                job: $crate::batch::kernel::Job<'_, O>,
-            ) -> usize {
-                kernel(self, job)
+                let $t = self;
+                $call
             }
         }
     };
