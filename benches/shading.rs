@@ -543,6 +543,27 @@ fn srgb8_4096(c: &mut Criterion) {
             phong::shade_batch_rgba8(black_box(&model), &m, &scene, pos, nor, &mut frame)
         })
     });
+    // Each level's kernel, both outputs: what the encoding costs where a gather instruction loads
+    // its table (AVX2, AVX-512) and where the lanes load it one by one.
+    for level in Level::supported() {
+        g.bench_function(BenchmarkId::new("batch_f32", level.name()), |b| {
+            b.iter(|| batch_run(level, black_box(&model), &m, &scene, &mut soa))
+        });
+        g.bench_function(BenchmarkId::new("batch_rgba8", level.name()), |b| {
+            b.iter(|| {
+                let (pos, nor, _) = soa.split();
+                phong::shade_batch_rgba8_with_level(
+                    level,
+                    black_box(&model),
+                    &m,
+                    &scene,
+                    pos,
+                    nor,
+                    &mut frame,
+                )
+            })
+        });
+    }
     g.finish();
 }
 

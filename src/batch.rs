@@ -112,10 +112,9 @@
 //! ## 8-bit output
 //!
 //! [`shade_batch_rgba8`] and [`shade_batch_xrgb8`] write a frame's pixels directly, as
-//! `[r, g, b, 255]` or `0x00RRGGBB`: the points are shaded 1024 at a time into a buffer on the
-//! stack and each chunk is encoded by [`linear_to_srgb8`](crate::linear_to_srgb8) while it is in
-//! the cache. The levels are exactly those of this module's `f32` output; no allocation, so they
-//! work without `alloc`.
+//! `[r, g, b, 255]` or `0x00RRGGBB`: the kernel encodes each chunk's colours in its lanes with
+//! [`linear_to_srgb8`](crate::linear_to_srgb8)'s table as it writes them. The levels are exactly
+//! those of this module's `f32` output; no buffer and no allocation, so they work without `alloc`.
 //!
 //! ## The terms apart
 //!
@@ -298,13 +297,13 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
 /// Shades a batch straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
 /// `[r, g, b] = linear_to_srgb8(shade(…, p[i], n[i]).total())`.
 ///
-/// The same kernel as [`shade_batch`] encodes each colour in its vector lanes before writing it:
-/// the sRGB curve by the degree-7 polynomials of [`PowStrategy::Poly7`](crate::PowStrategy),
-/// whose level is trusted where the value is further from a level boundary than the polynomial's
-/// measured error (and about one channel in 3000 near a boundary is encoded by
-/// [`linear_to_srgb8`](crate::linear_to_srgb8)'s table instead), so every pixel is exactly
-/// [`linear_to_srgb8`](crate::linear_to_srgb8) of the `f32` colour. No buffer, no allocation.
-/// Alpha is 255.
+/// The same kernel as [`shade_batch`] encodes each colour in its vector lanes before writing it,
+/// by [`linear_to_srgb8`](crate::linear_to_srgb8)'s own table: per channel, one 32-bit entry for
+/// the value's bucket of `f32`s (its exponent and top seven mantissa bits) holds the bucket's
+/// first level and where the one level boundary it may hold lies, loaded by a gather instruction
+/// at the AVX2 and AVX-512 levels and lane by lane elsewhere, then one comparison. So every
+/// pixel is exactly [`linear_to_srgb8`](crate::linear_to_srgb8) of the `f32` colour. No buffer,
+/// no allocation. Alpha is 255.
 ///
 /// **Domain:** as [`shade_batch`]. **Returns** the number of points shaded: the shortest of the
 /// six input slices and `out` (debug builds assert they are equal); entries past it are untouched.

@@ -311,7 +311,7 @@ pub fn shade_gbuffer_with_level<M: BatchModel, L: BatchLight>(
 }
 
 /// [`shade_gbuffer`] straight into an 8-bit RGBA frame: `out[i] = [r, g, b, 255]` with
-/// `[r, g, b] = linear_to_srgb8` of [`shade_gbuffer`]'s colour, encoded in the kernel's lanes as
+/// `[r, g, b] = linear_to_srgb8` of [`shade_gbuffer`]'s colour, encoded in the kernel as
 /// [`shade_batch_rgba8`](crate::shade_batch_rgba8) encodes them. Alpha is 255 at every shaded
 /// point; with a coverage mask, uncovered pixels keep all four bytes.
 ///
@@ -341,7 +341,7 @@ pub fn shade_gbuffer_rgba8_with_level<M: BatchModel, L: BatchLight>(
 }
 
 /// [`shade_gbuffer`] straight into a `0x00RRGGBB` frame (what minifb and softbuffer take):
-/// `out[i]` holds `linear_to_srgb8` of [`shade_gbuffer`]'s colour, encoded in the kernel's lanes
+/// `out[i]` holds `linear_to_srgb8` of [`shade_gbuffer`]'s colour, encoded in the kernel
 /// as [`shade_batch_xrgb8`](crate::shade_batch_xrgb8) encodes them; the top byte is 0.
 ///
 /// **Domain, returns, degenerate input:** as [`shade_gbuffer`], with `out` in place of the

@@ -94,6 +94,33 @@ pub(crate) trait Simd: Copy {
     fn sar23(self, a: Self::I) -> Self::I;
     /// Each lane converted to `f32` (exact below `2²⁴`).
     fn to_f32(self, a: Self::I) -> Self::V;
+    /// `a >> 16`, logical.
+    fn srl16(self, a: Self::I) -> Self::I;
+    /// `a << 8`.
+    fn shl8(self, a: Self::I) -> Self::I;
+    /// `a << 16`.
+    fn shl16(self, a: Self::I) -> Self::I;
+    /// `a & b`.
+    fn and_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `a > b` (signed) per lane as an integer mask: −1 where it holds, 0 elsewhere.
+    fn gt_i(self, a: Self::I, b: Self::I) -> Self::I;
+
+    /// `table[idx]` per lane, with each index first clamped into the table (as unsigned, so a
+    /// negative one reads the last entry): a table lookup that cannot read outside it.
+    ///
+    /// One load per lane through memory; the levels with a gather instruction use it.
+    #[inline(always)]
+    fn gather(self, table: &[i32], idx: Self::I) -> Self::I {
+        let last = table.len().saturating_sub(1);
+        let idx = self.store(self.bits_to_f32(idx));
+        let mut got: super::kernel::Lanes = [0.0; super::kernel::W];
+        // A loop, not `array::from_fn`: a closure would not inherit a level's target features.
+        for (g, i) in got.iter_mut().zip(idx) {
+            let at = (i.to_bits() as usize).min(last);
+            *g = f32::from_bits(table.get(at).copied().unwrap_or(0) as u32);
+        }
+        self.to_bits(self.load(&got))
+    }
 }
 
 /// A level's kernel entries: the batch kernel compiled with the level's instructions, for each
@@ -245,7 +272,7 @@ macro_rules! level_entry {
     )
 )]
 macro_rules! simd_by_parts {
-    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident) => {
+    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident, gather = $gather:ident) => {
         impl $crate::batch::simd::Simd for $token {
             type V = [$n; [$($j),+].len()];
             type I = [$ni; [$($j),+].len()];
@@ -364,9 +391,54 @@ macro_rules! simd_by_parts {
             fn to_f32(self, a: Self::I) -> Self::V {
                 [$($native::to_f32(a[$j])),+]
             }
+            #[inline(always)]
+            fn srl16(self, a: Self::I) -> Self::I {
+                [$($native::srl16(a[$j])),+]
+            }
+            #[inline(always)]
+            fn shl8(self, a: Self::I) -> Self::I {
+                [$($native::shl8(a[$j])),+]
+            }
+            #[inline(always)]
+            fn shl16(self, a: Self::I) -> Self::I {
+                [$($native::shl16(a[$j])),+]
+            }
+            #[inline(always)]
+            fn and_i(self, a: Self::I, b: Self::I) -> Self::I {
+                [$($native::and_i(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn gt_i(self, a: Self::I, b: Self::I) -> Self::I {
+                [$($native::gt_i(a[$j], b[$j])),+]
+            }
+            $crate::batch::simd::gather_by_parts!($native, $gather, [$($j),+]);
         }
     };
 }
+
+#[cfg_attr(
+    not(any(
+        target_arch = "x86_64",
+        all(target_arch = "aarch64", target_feature = "neon")
+    )),
+    allow(
+        unused_macros,
+        unused_imports,
+        reason = "only the vector levels use it; this target has none"
+    )
+)]
+/// [`Simd::gather`] for a level built by [`simd_by_parts!`]: the trait's per-lane default
+/// (`default`), or the level's own instruction, `$native::gather` on each part (`native`).
+macro_rules! gather_by_parts {
+    ($native:ident, default, [$($j:expr),+]) => {};
+    ($native:ident, native, [$($j:expr),+]) => {
+        #[inline(always)]
+        fn gather(self, table: &[i32], idx: Self::I) -> Self::I {
+            [$($native::gather(table, idx[$j])),+]
+        }
+    };
+}
+pub(crate) use gather_by_parts;
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx2;

@@ -4,7 +4,7 @@
 
 use core::ops::Range;
 
-use super::kernel::{Job, Lanes, W};
+use super::kernel::{Job, W};
 use super::simd::{Kernels, Simd};
 use super::soa::{SoaRgb, SoaTerms};
 use super::srgb8_lanes;
@@ -137,8 +137,9 @@ impl Sink for SoaTerms<'_> {
     }
 }
 
-/// An 8-bit frame: the total colour encoded to sRGB levels in the kernel's lanes
-/// ([`srgb8_lanes`](super::srgb8_lanes)), as `[r, g, b, 255]` or as `0x00RRGGBB`.
+/// An 8-bit frame: the total colour encoded to sRGB levels in the kernel's lanes by
+/// [`linear_to_srgb8`](crate::linear_to_srgb8)'s table ([`srgb8_lanes`](super::srgb8_lanes)), as
+/// `[r, g, b, 255]` or as `0x00RRGGBB`.
 pub(crate) enum Pixels8<'a> {
     /// `[r, g, b, 255]` per point.
     Rgba(&'a mut [[u8; 4]]),
@@ -180,10 +181,14 @@ impl Sink for Pixels8<'_> {
 
     #[inline(always)]
     fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]) {
+        // Called one by one: a closure (`rows[0].map(..)`) would not inherit the kernel's target
+        // features, and its intrinsics would become calls.
         let [r, g, b] = rows[0];
-        let (lr, nr) = srgb8_lanes::levels(s, r);
-        let (lg, ng) = srgb8_lanes::levels(s, g);
-        let (lb, nb) = srgb8_lanes::levels(s, b);
+        let (lr, lg, lb) = (
+            srgb8_lanes::levels(s, r),
+            srgb8_lanes::levels(s, g),
+            srgb8_lanes::levels(s, b),
+        );
         let (lo, hi, top) = match self {
             Pixels8::Rgba(_) => (lr, lb, 0xff00_0000),
             Pixels8::Xrgb(_) => (lb, lr, 0),
@@ -197,12 +202,6 @@ impl Sink for Pixels8<'_> {
             }
             Pixels8::Xrgb(out) => write_lanes(out, i, count, &words),
         }
-        // The lanes within a hair of a level boundary: the table decides.
-        let near = (s.bits(nr) | s.bits(ng) | s.bits(nb)) & (u32::MAX >> (32 - count));
-        if near != 0 {
-            let [r, g, b] = rows[0];
-            self.redo(i, near, &[s.store(r), s.store(g), s.store(b)]);
-        }
     }
 
     fn put(&mut self, at: usize, terms: &Terms) {
@@ -211,21 +210,5 @@ impl Sink for Pixels8<'_> {
 
     fn run_on<T: Kernels>(t: T, job: Job<'_, Self>) -> usize {
         t.run_pixels(job)
-    }
-}
-
-impl Pixels8<'_> {
-    /// Re-encodes lanes `near` (bit `j` for lane `j`) of the chunk at `i` by the table.
-    #[cold]
-    #[inline(never)]
-    fn redo(&mut self, i: usize, mut near: u32, [r, g, b]: &[Lanes; 3]) {
-        while near != 0 {
-            let j = near.trailing_zeros() as usize;
-            near &= near - 1;
-            self.set(
-                i + j,
-                crate::linear_to_srgb8(glam::Vec3::new(r[j], g[j], b[j])),
-            );
-        }
     }
 }

@@ -273,50 +273,56 @@ const THRESHOLDS: [u32; 257] = [
     u32::MAX,
 ];
 
-/// `x` (non-negative, below 1) falls in bucket `bits(x) >> SHIFT`: its exponent and top seven
-/// mantissa bits. (With five, a 4 KiB table, a bucket holds up to three boundaries; with seven at
-/// most one, and one comparison doubles the throughput.)
-const SHIFT: u32 = 16;
-/// The buckets of the `f32` values in `[0, 1)`.
-const BUCKETS: usize = (0x3f80_0000 >> SHIFT) as usize;
-/// At most this many level boundaries lie inside one bucket (a test checks every bucket).
-const MAX_IN_BUCKET: usize = 1;
+/// `x` falls in bucket `bits(x) >> SHIFT`: its exponent and top seven mantissa bits. (With five,
+/// a bucket holds up to three boundaries; with seven at most one, so one comparison decides.)
+pub(crate) const SHIFT: u32 = 16;
+/// The bits of the smallest `f32` with a bucket of its own: every smaller one (zero, and up to
+/// `THRESHOLDS[1]`, about `1.5·10⁻⁴`) is level 0, as this bucket's start is.
+pub(crate) const LOWEST: u32 = 0x3900_0000;
+/// The bits of 1.0, whose bucket is the last: every `x ≥ 1` is level 255.
+const ONE: u32 = 0x3f80_0000;
+/// The buckets from `LOWEST`'s to 1.0's.
+const BUCKETS: usize = ((ONE - LOWEST) >> SHIFT) as usize + 1;
 
-/// `START[b]`: the level of the smallest `f32` in bucket `b`.
-const START: [u8; BUCKETS] = starts();
+const _: () = assert!(THRESHOLDS[1] > LOWEST, "level 0 must cover LOWEST's bucket");
 
-const fn starts() -> [u8; BUCKETS] {
-    let mut start = [0u8; BUCKETS];
+/// `BUCKET[b]` for bucket `b` (counted from `LOWEST`'s): `k << 16 | c`, with `k` the level of
+/// the bucket's smallest `f32` and `c` the bound its low 16 bits must exceed for the level to be
+/// `k + 1`: the next threshold's low bits minus one where that threshold lies inside the bucket,
+/// `0xffff` (never exceeded) where it does not. One entry decides a channel: 6660 bytes, which
+/// stay in the L1 cache beside a shading loop's data, and one entry per lane is what a gather
+/// instruction loads.
+pub(crate) const BUCKET: [i32; BUCKETS] = buckets();
+
+const fn buckets() -> [i32; BUCKETS] {
+    let mut bucket = [0i32; BUCKETS];
     let (mut b, mut k) = (0, 0);
     while b < BUCKETS {
-        let bits = (b as u32) << SHIFT;
-        while k < 255 && bits >= THRESHOLDS[k + 1] {
+        let first = LOWEST + ((b as u32) << SHIFT);
+        while k < 255 && first >= THRESHOLDS[k + 1] {
             k += 1;
         }
-        start[b] = k as u8;
+        // `THRESHOLDS[k + 1] > first` (for k = 255 it is `u32::MAX`), so this is at least 1.
+        let gap = THRESHOLDS[k + 1] - first;
+        let c = if gap <= 0xffff { gap - 1 } else { 0xffff };
+        bucket[b] = ((k as u32) << 16 | c) as i32;
         b += 1;
     }
-    start
+    bucket
 }
 
 /// The 8-bit sRGB level of a linear value: `⌊255·srgb(x) + ½⌋` with the exact `srgb`, clamped to
 /// `[0, 255]`; NaN and negatives give 0, `+∞` gives 255.
 ///
-/// The level at the start of `x`'s bucket from a 16 KiB table, then one comparison for the one
-/// boundary the bucket may hold, without a branch.
+/// The level at the start of `x`'s bucket and the position of the one level boundary the bucket
+/// may hold, from one table entry, then one comparison, with no branch (the clamp keeps every
+/// index in the table). The batch kernel's 8-bit output evaluates the same steps in its lanes.
 #[inline]
 pub(crate) fn level(x: f32) -> u8 {
     // `max_or` maps NaN to 0; the bits of a non-negative `f32` (`+∞` included) order as it does.
-    let bits = math::max_or(x, 0.0).to_bits();
-    let b = (bits >> SHIFT) as usize;
-    if b >= BUCKETS {
-        return 255; // x ≥ 1
-    }
-    let mut k = usize::from(START[b]);
-    for _ in 0..MAX_IN_BUCKET {
-        k += usize::from(bits >= THRESHOLDS[k + 1]);
-    }
-    k as u8
+    let bits = math::max_or(x, 0.0).to_bits().clamp(LOWEST, ONE);
+    let entry = BUCKET[((bits - LOWEST) >> SHIFT) as usize] as u32;
+    ((entry >> 16) + u32::from(bits & 0xffff > entry & 0xffff)) as u8
 }
 
 #[cfg(test)]
@@ -356,13 +362,42 @@ mod tests {
         }
     }
 
-    /// The level at the top of each bucket is at most `MAX_IN_BUCKET` above its start.
+    /// The level at the top of each bucket is at most one above its start: [`level`]'s one
+    /// comparison decides every `f32`.
     #[test]
     fn no_bucket_holds_more_boundaries_than_the_search_covers() {
-        for (b, &start) in START.iter().enumerate() {
-            let top = (((b + 1) as u32) << SHIFT) - 1;
+        for (b, &entry) in BUCKET.iter().enumerate() {
+            let top = LOWEST + (((b + 1) as u32) << SHIFT) - 1;
             let last = THRESHOLDS[..256].iter().filter(|&&t| t <= top).count() - 1;
-            assert!(last - usize::from(start) <= MAX_IN_BUCKET, "bucket {b}");
+            assert!(last - (entry >> 16) as usize <= 1, "bucket {b}");
+        }
+    }
+
+    /// On both sides of every level boundary, and at each end of every bucket.
+    #[test]
+    fn level_steps_at_each_threshold_and_nowhere_else() {
+        for (k, &t) in THRESHOLDS.iter().enumerate().take(256).skip(1) {
+            assert_eq!(
+                level(f32::from_bits(t)),
+                k as u8,
+                "at level {k}'s threshold"
+            );
+            assert_eq!(
+                level(f32::from_bits(t - 1)),
+                k as u8 - 1,
+                "below level {k}'s"
+            );
+        }
+        for b in 0..BUCKETS as u32 {
+            let first = LOWEST + (b << SHIFT);
+            for bits in [first, first + (1 << SHIFT) - 1] {
+                let want = THRESHOLDS[1..256].iter().filter(|&&t| t <= bits).count();
+                assert_eq!(
+                    usize::from(level(f32::from_bits(bits))),
+                    want,
+                    "0x{bits:08x}"
+                );
+            }
         }
     }
 

@@ -7,10 +7,11 @@
 
 use core::arch::x86_64::{
     __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
-    _mm256_blendv_ps, _mm256_cmp_ps, _mm256_cvtepi32_ps, _mm256_div_ps, _mm256_fmadd_ps,
-    _mm256_fmsub_ps, _mm256_fnmadd_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
-    _mm256_mul_ps, _mm256_rsqrt_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32,
-    _mm256_srai_epi32, _mm256_sub_epi32, _mm256_sub_ps,
+    _mm256_and_si256, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_cmpgt_epi32, _mm256_cvtepi32_ps,
+    _mm256_div_ps, _mm256_fmadd_ps, _mm256_fmsub_ps, _mm256_fnmadd_ps, _mm256_i32gather_epi32,
+    _mm256_max_ps, _mm256_min_epu32, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+    _mm256_rsqrt_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32, _mm256_srai_epi32,
+    _mm256_srli_epi32, _mm256_sub_epi32, _mm256_sub_ps,
 };
 
 use crate::batch::Level;
@@ -27,7 +28,15 @@ impl Avx2 {
     }
 }
 
-simd_by_parts!(Avx2, [0, 1], __m256, __m256i, __m256, native);
+simd_by_parts!(
+    Avx2,
+    [0, 1],
+    __m256,
+    __m256i,
+    __m256,
+    native,
+    gather = native
+);
 
 level_entry!(Avx2, features = "avx2,fma");
 
@@ -130,5 +139,40 @@ mod native {
     #[inline(always)]
     pub(super) fn to_f32(a: __m256i) -> __m256 {
         unsafe { _mm256_cvtepi32_ps(a) }
+    }
+    #[inline(always)]
+    pub(super) fn srl16(a: __m256i) -> __m256i {
+        unsafe { _mm256_srli_epi32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl8(a: __m256i) -> __m256i {
+        unsafe { _mm256_slli_epi32::<8>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl16(a: __m256i) -> __m256i {
+        unsafe { _mm256_slli_epi32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn and_i(a: __m256i, b: __m256i) -> __m256i {
+        unsafe { _mm256_and_si256(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn gt_i(a: __m256i, b: __m256i) -> __m256i {
+        unsafe { _mm256_cmpgt_epi32(a, b) }
+    }
+    /// `vpgatherdd`, each index first clamped to the table's last (unsigned `min`), so every
+    /// lane reads inside `table`.
+    #[inline(always)]
+    pub(super) fn gather(table: &[i32], idx: __m256i) -> __m256i {
+        let Some(last) = table.len().checked_sub(1) else {
+            return splat_i(0);
+        };
+        let last = i32::try_from(last).unwrap_or(i32::MAX);
+        // SAFETY: as the module's, and every index is at most `last` after the `min`, so each
+        // lane reads `table[i]` with `i < table.len()`.
+        unsafe {
+            let idx = _mm256_min_epu32(idx, _mm256_set1_epi32(last));
+            _mm256_i32gather_epi32::<4>(table.as_ptr(), idx)
+        }
     }
 }

@@ -8,10 +8,12 @@
 
 use core::arch::x86_64::{
     __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _mm512_add_epi32, _mm512_add_ps,
-    _mm512_cmp_ps_mask, _mm512_cvtepi32_ps, _mm512_div_ps, _mm512_fmadd_ps, _mm512_fmsub_ps,
-    _mm512_fnmadd_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_ps, _mm512_max_ps, _mm512_min_ps,
-    _mm512_mul_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32, _mm512_set1_ps, _mm512_slli_epi32,
-    _mm512_srai_epi32, _mm512_sub_epi32, _mm512_sub_ps,
+    _mm512_and_si512, _mm512_cmp_ps_mask, _mm512_cmpgt_epi32_mask, _mm512_cvtepi32_ps,
+    _mm512_div_ps, _mm512_fmadd_ps, _mm512_fmsub_ps, _mm512_fnmadd_ps, _mm512_i32gather_epi32,
+    _mm512_mask_blend_ps, _mm512_maskz_mov_epi32, _mm512_maskz_mov_ps, _mm512_max_ps,
+    _mm512_min_epu32, _mm512_min_ps, _mm512_mul_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32,
+    _mm512_set1_ps, _mm512_slli_epi32, _mm512_srai_epi32, _mm512_srli_epi32, _mm512_sub_epi32,
+    _mm512_sub_ps,
 };
 
 use crate::batch::Level;
@@ -28,7 +30,15 @@ impl Avx512 {
     }
 }
 
-simd_by_parts!(Avx512, [0], __m512, __m512i, __mmask16, native);
+simd_by_parts!(
+    Avx512,
+    [0],
+    __m512,
+    __m512i,
+    __mmask16,
+    native,
+    gather = native
+);
 
 level_entry!(Avx512, features = "avx512f,avx512vl,avx2,fma");
 
@@ -132,5 +142,40 @@ mod native {
     #[inline(always)]
     pub(super) fn to_f32(a: __m512i) -> __m512 {
         unsafe { _mm512_cvtepi32_ps(a) }
+    }
+    #[inline(always)]
+    pub(super) fn srl16(a: __m512i) -> __m512i {
+        unsafe { _mm512_srli_epi32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl8(a: __m512i) -> __m512i {
+        unsafe { _mm512_slli_epi32::<8>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl16(a: __m512i) -> __m512i {
+        unsafe { _mm512_slli_epi32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn and_i(a: __m512i, b: __m512i) -> __m512i {
+        unsafe { _mm512_and_si512(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn gt_i(a: __m512i, b: __m512i) -> __m512i {
+        unsafe { _mm512_maskz_mov_epi32(_mm512_cmpgt_epi32_mask(a, b), _mm512_set1_epi32(-1)) }
+    }
+    /// `vpgatherdd`, each index first clamped to the table's last (unsigned `min`), so every
+    /// lane reads inside `table`.
+    #[inline(always)]
+    pub(super) fn gather(table: &[i32], idx: __m512i) -> __m512i {
+        let Some(last) = table.len().checked_sub(1) else {
+            return splat_i(0);
+        };
+        let last = i32::try_from(last).unwrap_or(i32::MAX);
+        // SAFETY: as the module's, and every index is at most `last` after the `min`, so each
+        // lane reads `table[i]` with `i < table.len()`.
+        unsafe {
+            let idx = _mm512_min_epu32(idx, _mm512_set1_epi32(last));
+            _mm512_i32gather_epi32::<4>(idx, table.as_ptr())
+        }
     }
 }

@@ -11,9 +11,10 @@
 )]
 
 use core::arch::aarch64::{
-    float32x4_t, int32x4_t, uint32x4_t, vaddq_f32, vaddq_s32, vaddvq_u32, vandq_u32, vbslq_f32,
-    vcgtq_f32, vcleq_f32, vcltq_f32, vcvtq_f32_s32, vdivq_f32, vdupq_n_f32, vdupq_n_s32, vfmaq_f32,
-    vmulq_f32, vrsqrteq_f32, vrsqrtsq_f32, vshlq_n_s32, vshrq_n_s32, vsubq_f32, vsubq_s32,
+    float32x4_t, int32x4_t, uint32x4_t, vaddq_f32, vaddq_s32, vaddvq_u32, vandq_s32, vandq_u32,
+    vbslq_f32, vcgtq_f32, vcgtq_s32, vcleq_f32, vcltq_f32, vcvtq_f32_s32, vdivq_f32, vdupq_n_f32,
+    vdupq_n_s32, vfmaq_f32, vmulq_f32, vreinterpretq_s32_u32, vreinterpretq_u32_s32, vrsqrteq_f32,
+    vrsqrtsq_f32, vshlq_n_s32, vshrq_n_s32, vshrq_n_u32, vsubq_f32, vsubq_s32,
 };
 
 /// The `Neon` level's token (every aarch64 build with NEON runs it).
@@ -26,7 +27,8 @@ simd_by_parts!(
     float32x4_t,
     int32x4_t,
     uint32x4_t,
-    native
+    native,
+    gather = default
 );
 
 level_entry!(Neon);
@@ -134,5 +136,25 @@ mod native {
     #[inline(always)]
     pub(super) fn to_f32(a: int32x4_t) -> float32x4_t {
         unsafe { vcvtq_f32_s32(a) }
+    }
+    #[inline(always)]
+    pub(super) fn srl16(a: int32x4_t) -> int32x4_t {
+        unsafe { vreinterpretq_s32_u32(vshrq_n_u32::<16>(vreinterpretq_u32_s32(a))) }
+    }
+    #[inline(always)]
+    pub(super) fn shl8(a: int32x4_t) -> int32x4_t {
+        unsafe { vshlq_n_s32::<8>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl16(a: int32x4_t) -> int32x4_t {
+        unsafe { vshlq_n_s32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn and_i(a: int32x4_t, b: int32x4_t) -> int32x4_t {
+        unsafe { vandq_s32(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn gt_i(a: int32x4_t, b: int32x4_t) -> int32x4_t {
+        unsafe { vreinterpretq_s32_u32(vcgtq_s32(a, b)) }
     }
 }

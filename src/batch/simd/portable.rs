@@ -165,4 +165,24 @@ impl Simd for Portable {
     fn to_f32(self, a: [i32; W]) -> Lanes {
         each!(|i| a[i] as f32)
     }
+    #[inline(always)]
+    fn srl16(self, a: [i32; W]) -> [i32; W] {
+        each!(|i| ((a[i] as u32) >> 16) as i32)
+    }
+    #[inline(always)]
+    fn shl8(self, a: [i32; W]) -> [i32; W] {
+        each!(|i| a[i].wrapping_shl(8))
+    }
+    #[inline(always)]
+    fn shl16(self, a: [i32; W]) -> [i32; W] {
+        each!(|i| a[i].wrapping_shl(16))
+    }
+    #[inline(always)]
+    fn and_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
+        each!(|i| a[i] & b[i])
+    }
+    #[inline(always)]
+    fn gt_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
+        each!(|i| -i32::from(a[i] > b[i]))
+    }
 }

@@ -9,17 +9,25 @@
 )]
 
 use core::arch::x86_64::{
-    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_andnot_ps, _mm_cmple_ps,
-    _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_div_ps, _mm_max_ps, _mm_min_ps, _mm_movemask_ps, _mm_mul_ps,
-    _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32, _mm_set1_ps, _mm_slli_epi32, _mm_srai_epi32,
-    _mm_sub_epi32, _mm_sub_ps,
+    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
+    _mm_cmpgt_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_div_ps, _mm_max_ps,
+    _mm_min_ps, _mm_movemask_ps, _mm_mul_ps, _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32, _mm_set1_ps,
+    _mm_slli_epi32, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32, _mm_sub_ps,
 };
 
 /// The `Sse2` level's token (every x86_64 CPU runs it).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Sse2;
 
-simd_by_parts!(Sse2, [0, 1, 2, 3], __m128, __m128i, __m128, native);
+simd_by_parts!(
+    Sse2,
+    [0, 1, 2, 3],
+    __m128,
+    __m128i,
+    __m128,
+    native,
+    gather = default
+);
 
 level_entry!(Sse2);
 
@@ -120,5 +128,25 @@ mod native {
     #[inline(always)]
     pub(super) fn to_f32(a: __m128i) -> __m128 {
         unsafe { _mm_cvtepi32_ps(a) }
+    }
+    #[inline(always)]
+    pub(super) fn srl16(a: __m128i) -> __m128i {
+        unsafe { _mm_srli_epi32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl8(a: __m128i) -> __m128i {
+        unsafe { _mm_slli_epi32::<8>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn shl16(a: __m128i) -> __m128i {
+        unsafe { _mm_slli_epi32::<16>(a) }
+    }
+    #[inline(always)]
+    pub(super) fn and_i(a: __m128i, b: __m128i) -> __m128i {
+        unsafe { _mm_and_si128(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn gt_i(a: __m128i, b: __m128i) -> __m128i {
+        unsafe { _mm_cmpgt_epi32(a, b) }
     }
 }

@@ -749,9 +749,9 @@ fn main() {
     let _ = writeln!(
         md,
         "## 8-bit output (`srgb8_4096`)\n\n\
-         `linear_to_srgb8` finds each channel's level among the 255 level boundaries (a 16 KiB \
-         table indexed by the value's exponent and top mantissa bits, then one \
-         comparison); `quantize_u8(srgb_encode(x))` computes the same levels through `powf` \
+         `linear_to_srgb8` finds each channel's level among the 255 level boundaries (one \
+         entry of a 6.5 KiB table indexed by the value's exponent and top seven mantissa bits, \
+         then one comparison); `quantize_u8(srgb_encode(x))` computes the same levels through `powf` \
          (they differ only within a few ulps of a boundary: tests in src/colour/srgb8.rs). Million \
          colours per second, 4096 random colours:\n\n\
          | `linear_to_srgb8` | `srgb_encode` + `quantize_u8` | ratio |\n|---:|---:|---:|\n| {} | {} | {} |\n\n\
@@ -759,12 +759,12 @@ fn main() {
          colour in its vector lanes) against `shade_batch`'s linear `f32` output, the \
          benches' Phong scene at s = 32, best level, million points per second:\n\n\
          | `shade_batch` (`f32`) | `shade_batch_rgba8` | ratio |\n|---:|---:|---:|\n| {} | {} | {} |\n\n\
-         The lanes evaluate the sRGB curve by Poly7's polynomials (`x^(1/2.4)`, a measured \
-         error of at most 8.3e-5 levels over every `f32` in [0, 1]) and round; a channel within \
-         twice that error of a level boundary (about one in 3000) is encoded by the table \
-         instead, so the pixels are `linear_to_srgb8`'s, bit for bit (src/batch/srgb8_lanes.rs \
-         and its tests). The encoding still costs about as much as the shading itself: three \
-         polynomial powers a point, against one for the highlight.\n",
+         The lanes run `linear_to_srgb8`'s own steps: each lane's table entry is loaded by \
+         `vpgatherdd` at the AVX2 and AVX-512 levels and lane by lane at the others, so the \
+         pixels are `linear_to_srgb8`'s, bit for bit (src/batch/srgb8_lanes.rs and its tests). \
+         Until 2026-11-28 the lanes evaluated the sRGB curve by Poly7's polynomials and sent the \
+         channels near a level boundary to the table; DESIGN.md has that comparison. Per \
+         level, million points per second:\n",
         fmt_opt(table, 0),
         fmt_opt(pipeline, 0),
         fmt_opt(table.zip(pipeline).map(|(t, p)| t / p), 2),
@@ -772,6 +772,33 @@ fn main() {
         fmt_opt(batch_rgba8, 0),
         fmt_opt(batch_f32.zip(batch_rgba8).map(|(f, e)| e / f), 2)
     );
+    let _ = writeln!(
+        md,
+        "| level | `shade_batch` (`f32`) | `shade_batch_rgba8` | ratio |\n|---|---:|---:|---:|"
+    );
+    for lv in Level::supported() {
+        let f = mpts(
+            "srgb8_4096",
+            &format!("batch_f32/{}", lv.name()),
+            4096,
+            "new",
+        );
+        let e = mpts(
+            "srgb8_4096",
+            &format!("batch_rgba8/{}", lv.name()),
+            4096,
+            "new",
+        );
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} |",
+            lv.name(),
+            fmt_opt(f, 0),
+            fmt_opt(e, 0),
+            fmt_opt(f.zip(e).map(|(f, e)| e / f), 2)
+        );
+    }
+    let _ = writeln!(md);
 
     // ---- Array-of-structs input.
     let aos_row = |group: &str, n: usize| {
@@ -832,7 +859,7 @@ fn main() {
          where each 16-lane vector takes two of AVX2's sixteen registers), its `Auto` pow is the polynomial in every lane (a point's own \
          exponent, whole or not), it keeps \
          the three light sums apart per channel (nine accumulators) instead of the one folded sum \
-         a single material allows, and the 8-bit encoding adds three polynomial powers a point \
+         a single material allows, and the 8-bit encoding adds three table lookups a point \
          (section above). Every level runs its own instructions for these calls (the one kernel \
          source).\n\n\
          Accuracy on the 2²⁰ accuracy points, each with its own random texel, specular strength, \
