@@ -622,7 +622,8 @@ fn pow<S: Simd, const CALLS: bool>(s: S, plan: PowPlan, flush: f32, x: S::V) -> 
 /// AVX2 level (sixteen registers, two per vector of sixteen lanes) kept them on the stack. Loaded
 /// after, `shade_gbuffer` ran about a fifth faster there (`gbuffer_4096`).
 pub(crate) struct SurfaceV<S: Simd> {
-    scale: S::V,
+    /// The lobe's normalisation factor per lane; `None` for a model without one (a factor of 1).
+    scale: Option<S::V>,
     /// The lobe's exponent per lane (half the shininess for Blinn-Phong), evaluated by the
     /// polynomial at every value, as `auto_split_per_point` plans it for one point.
     exponent: S::V,
@@ -656,14 +657,15 @@ impl<S: Simd> SurfaceV<S> {
         }
         let sh = clean(s, surface_lanes!(s, inputs, i, count, 9));
         let scale = match lm.normalization {
-            Normalization::None if lm.lobe != Lobe::None => s.splat(1.0),
-            _ => s.load(&lane_scales(lm, &s.store(sh))),
+            Normalization::None if lm.lobe != Lobe::None => None,
+            _ => Some(s.load(&lane_scales(lm, &s.store(sh)))),
         };
         let half = if lm.lobe == Lobe::Blinn { 0.5 } else { 1.0 };
         Some(SurfaceV {
             scale,
-            // `auto_split_per_point`'s exponent, lane by lane.
-            exponent: clean(s, s.mul(s.splat(half), sh)),
+            // `auto_split_per_point`'s exponent, lane by lane (`sh` is in `[0, f32::MAX]`
+            // already, and so is its half).
+            exponent: s.mul(s.splat(half), sh),
         })
     }
 }
@@ -749,12 +751,14 @@ fn lane_scales(lm: &LaneModel, sh: &Lanes) -> Lanes {
 /// `PowStrategy::Auto`'s `x^e` with an exponent per lane (`surface.exponent`): the degree-7
 /// polynomial, as for one point with its own exponent (`auto_split_per_point`, bit for bit); 1
 /// where the exponent is 0, and 0 for `x ≤ 0`.
+///
+/// No select is needed for either case: for `x ∈ (0, 1]` the logarithm is finite, so an exponent
+/// of 0 makes `exp2(±0)`, which the polynomial gives as exactly 1; and the lanes with `x ≤ 0`,
+/// whose logarithm is meaningless (but raises nothing), are cleared at the end.
 #[inline(always)]
 fn auto_pow<S: Simd>(s: S, x: S::V, sf: &SurfaceV<S>) -> S::V {
     let pos = s.gt(x, s.splat(0.0));
-    let poly = poly_pow(s, Poly::P7, s.select(pos, x, s.splat(1.0)), sf.exponent);
-    let r = s.select(s.gt(sf.exponent, s.splat(0.0)), poly, s.splat(1.0));
-    s.keep(pos, r)
+    s.keep(pos, poly_pow(s, Poly::P7, x, sf.exponent))
 }
 
 /// `a·b` summed over the three components.
@@ -927,7 +931,7 @@ where
         ($lj:expr, $j:expr) => {{
             let lj: &LightLanes<S> = $lj;
             let j: usize = $j;
-        let (la, ld, ls) = (lj.la, lj.ld, lj.ls);
+        let (la, ld, ls) = (&lj.la, &lj.ld, &lj.ls);
         let light = lj.light;
         // (N·L, L unnormalised, 1/(‖L‖‖V‖), attenuation)
         let (nl, l, inv_lv, att) = match light.lane {
@@ -1055,7 +1059,12 @@ where
             // (as `shade` clamps its weight) before it meets a colour, so a zero lobe stays 0.
             let ws = s.mul(attv, w);
             let ws = match surface {
-                Some(sf) => s.min(s.mul(ws, sf.scale), max),
+                Some(SurfaceV {
+                    scale: Some(scale),
+                    ..
+                }) => s.min(s.mul(ws, *scale), max),
+                // f ≤ 1/MIN_DENOMINATOR, the visibility and the lobe ≤ 1: finite.
+                Some(_) => ws,
                 None if k.scaled => s.min(s.mul(ws, s.splat(lm.specular_scale)), max),
                 None => ws,
             };
@@ -1119,12 +1128,16 @@ fn finish<S: Simd, const FOLDED: bool>(
                 s.splat(k.material.specular()[c]),
             ),
         };
-        let ta = s.min(s.mul(ka, s.min(amb[c], max)), max);
-        let td = s.min(s.mul(kd, s.min(dif[c], max)), max);
-        let ts = s.min(s.mul(ks, s.min(spe[c], max)), max);
+        // Each sum clamped first, so that a zero colour times it stays 0 (never 0·∞).
+        let ta = s.mul(ka, s.min(amb[c], max));
+        let td = s.mul(kd, s.min(dif[c], max));
+        let ts = s.mul(ks, s.min(spe[c], max));
         if terms {
-            (rows[0][c], rows[1][c], rows[2][c]) = (ta, td, ts);
+            (rows[0][c], rows[1][c], rows[2][c]) = (s.min(ta, max), s.min(td, max), s.min(ts, max));
         } else {
+            // The terms are `≥ 0` (or +∞), so their sum reaches `f32::MAX` or +∞ exactly when
+            // it does with each term clamped first, as `Terms::total` sums them: one `min` at
+            // the end gives the same bits.
             rows[0][c] = s.min(s.add(s.add(s.add(ta, td), ts), s.splat(ke[c])), max);
         }
     }
@@ -1355,6 +1368,64 @@ mod tests {
                 "{p:?}: err {e:e} at x = {x:e}, s = {sh:e}"
             );
         }
+    }
+
+    /// The per-point power at its edges, with no select for them: an exponent of 0 gives exactly
+    /// 1 for every base in `(0, 1]`, subnormal ones included, and a base `≤ 0` (or NaN) gives 0
+    /// at every exponent.
+    fn per_point_power_edges<S: Simd>(s: S, level: &str) {
+        let bases = [
+            1.0,
+            0.5,
+            1e-20,
+            f32::MIN_POSITIVE,
+            f32::MIN_POSITIVE / 3.0,
+            f32::from_bits(1),
+            0.999_999_9,
+            0.25,
+            0.0,
+            -0.0,
+            -1.0,
+            -f32::MIN_POSITIVE,
+            f32::NAN,
+            -f32::MAX,
+            0.75,
+            0.125,
+        ];
+        for e in [0.0, 1e-30, 0.5, 1.0, 20.5, 128.0, 1e30, math::MAX] {
+            let sf = SurfaceV::<S> {
+                scale: None,
+                exponent: s.splat(e),
+            };
+            let got = s.store(auto_pow(s, s.load(&bases), &sf));
+            for (&x, &y) in bases.iter().zip(&got) {
+                if x > 0.0 && e == 0.0 {
+                    assert_eq!(y, 1.0, "{level}: {x:e}^0");
+                } else if !(x > 0.0) {
+                    assert_eq!(y.to_bits(), 0, "{level}: {x:e}^{e:e}");
+                } else {
+                    assert!((0.0..=1.0).contains(&y), "{level}: {x:e}^{e:e} = {y:e}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_per_point_power_keeps_its_edges_at_every_level() {
+        per_point_power_edges(Portable, "portable");
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::batch::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
+            per_point_power_edges(Sse2, "sse2");
+            if let Some(t) = Avx2::new() {
+                per_point_power_edges(t, "avx2");
+            }
+            if let Some(t) = Avx512::new() {
+                per_point_power_edges(t, "avx512");
+            }
+        }
+        #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+        per_point_power_edges(crate::batch::simd::neon::Neon, "neon");
     }
 
     #[test]

@@ -605,6 +605,29 @@ fn main() {
             fmt_opt(r, 2)
         );
     }
+    // The G-buffer's 8-bit output against `batch_frac`: this run's, and 259b7f8's (the issue's
+    // "today's `batch_frac`", run just before this run as the baseline `b259`).
+    let frac_now = mpts("gbuffer_4096", "batch_frac", 4096, "new");
+    let frac_259 = mpts("phong_4096", "batch_frac", 4096, "b259");
+    for (f, label) in [
+        ("gbuffer_rgba8", "RGBA8"),
+        ("gbuffer_albedo8_rgba8", "RGBA8, 8-bit albedo"),
+    ] {
+        let ours = mpts("gbuffer_4096", f, 4096, "new");
+        for (base, which) in [(frac_now, "this run's"), (frac_259, "259b7f8's")] {
+            let r = ours.zip(base).map(|(o, b)| o / b);
+            let status = match r {
+                Some(r) if r >= 0.8 => "met".to_string(),
+                Some(r) => format!("missed by {:.1}%", (1.0 - r / 0.8) * 100.0),
+                None => "not measured".to_string(),
+            };
+            let _ = writeln!(
+                md,
+                "| `{f}` ({label}) ≥ 0.8× {which} `batch_frac` | gbuffer_4096 | {}× | {status} |",
+                fmt_opt(r, 2)
+            );
+        }
+    }
     let _ = writeln!(
         md,
         "\n## Real-shaped groups (`cargo bench --bench renderers`; `raster_frame`: `cargo bench -p raster`)\n"
@@ -844,24 +867,30 @@ fn main() {
          the same points under one material of shininess 20.5). Phong, one point light, best \
          level, million points per second:\n\n\
          | `batch_frac` | `shade_gbuffer` (`f32`) | ratio | `shade_gbuffer_rgba8` | ratio | \
-         RGBA8 with 8-bit sRGB albedo | ratio | `shade_gbuffer_terms` | ratio |\n\
-         |---:|---:|---:|---:|---:|---:|---:|---:|---:|\n\
-         | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n\n\
+         RGBA8 with 8-bit sRGB albedo | ratio | `shade_gbuffer_terms` | ratio | `batch_frac` at \
+         `259b7f8` |\n\
+         |---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n\
+         | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n\n\
          The RGBA8-with-albedo pair reads the texels as a renderer keeps them, 8-bit sRGB \
          (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a 256-entry table), in place of \
          linear `f32` reflectances. The last pair writes the three terms apart (`SoaTerms`: nine \
          `f32` slices, 36 bytes a point against the total's 12).\n\n\
-         Why it is slower than one material: a per-point surface is ten more vectors to load and \
-         sanitise per chunk (since 2026-11-28 the nine reflectances are loaded after the light \
-         sums: loaded before, the AVX2 level kept them on the stack across the light loop, about \
-         a fifth of `shade_gbuffer`'s time; a probe still counted about 58 instructions a point \
-         against `batch_frac`'s 36 before that change, 12 of them moves to and from the stack, \
-         where each 16-lane vector takes two of AVX2's sixteen registers), its `Auto` pow is the polynomial in every lane (a point's own \
-         exponent, whole or not), it keeps \
-         the three light sums apart per channel (nine accumulators) instead of the one folded sum \
-         a single material allows, and the 8-bit encoding adds three table lookups a point \
-         (section above). Every level runs its own instructions for these calls (the one kernel \
-         source).\n\n\
+         `259b7f8` is `batch_frac` as it was at that commit (`phong_4096`: the same scene, \
+         shininess and number of points), from the baseline `b259` run just before this run: \
+         the one-material speed the G-buffer target was set against. The targets table above \
+         gives the 8-bit rows against both.\n\n\
+         Why it is slower than one material: the gap is the number of instructions, not their \
+         rate (callgrind per kernel instance, DESIGN.md). A per-point surface is ten more \
+         vectors to load and sanitise per chunk; its `Auto` pow is the polynomial in every lane \
+         (a point's own exponent, whole or not); it keeps the three light sums apart per channel \
+         (nine accumulators, and their saturation and products at the end) instead of the one \
+         folded sum a single material allows; each 16-lane vector is two of AVX2's sixteen \
+         registers, so about a third of the instructions are moves to and from the stack; and \
+         the 8-bit encoding adds three table lookups a point (section above). Eight lanes a step \
+         at the AVX2 level, which halves the registers each vector takes, measured about a \
+         quarter slower for both calls: the loop is bound by its dependency chains, and two \
+         independent halves per vector are what hides their latency. Every level runs its own \
+         instructions for these calls (the one kernel source).\n\n\
          Accuracy on the 2²⁰ accuracy points, each with its own random texel, specular strength, \
          shininess in [2, 128] and shadow factor in [0, 1], against the same equation in `f64`: \
          max abs error {:.1e}, 8-bit mismatch {:.2e}, to compare with the one-material batch \
@@ -875,6 +904,7 @@ fn main() {
         fmt_opt(frac.zip(gb_albedo8).map(|(a, b)| b / a), 2),
         fmt_opt(gb_terms, 0),
         fmt_opt(frac.zip(gb_terms).map(|(a, b)| b / a), 2),
+        fmt_opt(mpts("phong_4096", "batch_frac", 4096, "b259"), 0),
         gb_acc.max_abs,
         gb_acc.mismatch
     );
@@ -1045,8 +1075,9 @@ fn main() {
          the auto-vectorised levels that the one kernel source replaced), run just before this \
          run on the same machine and saved as criterion baseline `b259`:\n\n\
          ```text\ngit worktree add /tmp/b259 259b7f8 && (cd /tmp/b259 && cargo bench --bench \
-         shading --no-run)\n/tmp/b259/target/release/deps/shading-<hash> --bench levels_4096 \
-         --save-baseline b259   # run from this repository's root\n```\n"
+         shading --no-run)\n/tmp/b259/target/release/deps/shading-<hash> --bench \
+         'levels_4096|phong_4096/batch_frac$' --save-baseline b259   # from this repository's \
+         root\n```\n"
     );
     if !Level::supported().any(|lv| lv == Level::Avx512) {
         let _ = writeln!(
