@@ -885,7 +885,8 @@ fn main() {
          (a point's own exponent, whole or not); it keeps the three light sums apart per channel \
          (nine accumulators, and their saturation and products at the end) instead of the one \
          folded sum a single material allows; each 16-lane vector is two of AVX2's sixteen \
-         registers, so about a third of the instructions are moves to and from the stack; and \
+         registers, so about a fifth of its instructions are moves to and from the stack \
+         (a seventh of `batch_frac`'s); and \
          the 8-bit encoding adds three table lookups a point (section above). Eight lanes a step \
          at the AVX2 level, which halves the registers each vector takes, measured about a \
          quarter slower for both calls: the loop is bound by its dependency chains, and two \
