@@ -674,60 +674,85 @@ fn gbuffer_4096(c: &mut Criterion) {
             }
         })
         .collect();
-    let (px, py, pz): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+    // Every array of the group carved from one buffer at staggered 4 KiB offsets, as
+    // `batch_frac`'s are (`Soa`): separate `Vec`s of 16 KiB each start 16 bytes apart within a
+    // page, and 4 KiB aliasing between them slows the loop.
+    let stride = n + 272;
+    let mut arena = vec![0.0f32; 27 * stride];
+    let (inputs, outputs) = arena.split_at_mut(13 * stride);
+    let columns: [Vec<f32>; 13] = [
         p.iter().map(|v| v.x).collect(),
         p.iter().map(|v| v.y).collect(),
         p.iter().map(|v| v.z).collect(),
-    );
-    let (nx, ny, nz): (Vec<f32>, Vec<f32>, Vec<f32>) = (
         nn.iter().map(|v| v.x).collect(),
         nn.iter().map(|v| v.y).collect(),
         nn.iter().map(|v| v.z).collect(),
+        tr,
+        tg,
+        tb,
+        strength.clone(),
+        shininess,
+        shadow.clone(),
+        vec![1.0; n],
+    ];
+    for (k, column) in columns.iter().enumerate() {
+        inputs[k * stride..k * stride + n].copy_from_slice(column);
+    }
+    let column = |k: usize| &inputs[k * stride..k * stride + n];
+    let (px, py, pz, nx, ny, nz) = (
+        column(0),
+        column(1),
+        column(2),
+        column(3),
+        column(4),
+        column(5),
     );
-    let texels = SoaVec3::new(&tr, &tg, &tb);
-    let buffer = phong::GBuffer::new(SoaVec3::new(&px, &py, &pz), SoaVec3::new(&nx, &ny, &nz))
+    let (strength_s, shininess_s, shadow_s, ones) = (column(9), column(10), column(11), column(12));
+    let texels = SoaVec3::new(column(6), column(7), column(8));
+    let buffer = phong::GBuffer::new(SoaVec3::new(px, py, pz), SoaVec3::new(nx, ny, nz))
         .with_surface(phong::SoaSurface {
             ambient: texels,
             diffuse: texels,
-            specular: SoaVec3::new(&strength, &strength, &strength),
-            shininess: &shininess,
+            specular: SoaVec3::new(strength_s, strength_s, strength_s),
+            shininess: shininess_s,
         })
-        .with_visibility(&shadow);
+        .with_visibility(shadow_s);
     // The same texels as a renderer keeps them, 8-bit sRGB, decoded in the kernel: a white
     // surface whose ambient and diffuse the texel multiplies.
-    let texels8: Vec<[u8; 4]> = texel
-        .iter()
-        .map(|t| {
-            let [r, g, b] = phong::linear_to_srgb8(Vec3::from(*t));
-            [r, g, b, 255]
-        })
-        .collect();
-    let ones = vec![1.0f32; n];
-    let white = SoaVec3::new(&ones, &ones, &ones);
-    let buffer8 = phong::GBuffer::new(SoaVec3::new(&px, &py, &pz), SoaVec3::new(&nx, &ny, &nz))
+    let (texel_plane, outputs) = outputs.split_at_mut(stride);
+    let texels8: &mut [[u8; 4]] = bytemuck::cast_slice_mut(&mut texel_plane[..n]);
+    for (t8, t) in texels8.iter_mut().zip(&texel) {
+        let [r, g, b] = phong::linear_to_srgb8(Vec3::from(*t));
+        *t8 = [r, g, b, 255];
+    }
+    let texels8: &[[u8; 4]] = texels8;
+    let white = SoaVec3::new(ones, ones, ones);
+    let buffer8 = phong::GBuffer::new(SoaVec3::new(px, py, pz), SoaVec3::new(nx, ny, nz))
         .with_surface(phong::SoaSurface {
             ambient: white,
             diffuse: white,
-            specular: SoaVec3::new(&strength, &strength, &strength),
-            shininess: &shininess,
+            specular: SoaVec3::new(strength_s, strength_s, strength_s),
+            shininess: shininess_s,
         })
-        .with_albedo_srgb8(&texels8)
-        .with_visibility(&shadow);
-    let (mut r, mut gr, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut frame = vec![[0u8; 4]; n];
+        .with_albedo_srgb8(texels8)
+        .with_visibility(shadow_s);
+    // The outputs: three colour planes, an 8-bit frame, and the nine term planes.
+    let mut planes: Vec<&mut [f32]> = outputs.chunks_mut(stride).map(|c| &mut c[..n]).collect();
+    let mut terms = planes.split_off(4);
+    let [r, gr, b, frame_plane] = &mut planes[..] else {
+        unreachable!("four planes")
+    };
+    let frame: &mut [[u8; 4]] = bytemuck::cast_slice_mut(&mut frame_plane[..]);
 
     // Agreement before timing: the G-buffer call against the scalar path point by point.
-    phong::shade_gbuffer(
-        &model,
-        &m20,
-        &scene,
-        &buffer,
-        SoaRgb::new(&mut r, &mut gr, &mut b),
-    );
+    phong::shade_gbuffer(&model, &m20, &scene, &buffer, SoaRgb::new(r, gr, b));
     let shader = phong::Shader::new(model, &m20, &scene);
     for i in 0..n {
-        let surface =
-            phong::Surface::textured(Vec3::from(texel[i]), Vec3::splat(strength[i]), shininess[i]);
+        let surface = phong::Surface::textured(
+            Vec3::from(texel[i]),
+            Vec3::splat(strength[i]),
+            shininess_s[i],
+        );
         let want = shader
             .shade_surface(p[i], nn[i], &surface, [shadow[i]])
             .total();
@@ -748,22 +773,15 @@ fn gbuffer_4096(c: &mut Criterion) {
                 &m20,
                 &scene,
                 black_box(&buffer),
-                SoaRgb::new(&mut r, &mut gr, &mut b),
+                SoaRgb::new(r, gr, b),
             )
         })
     });
     g.bench_function("gbuffer_rgba8", |bch| {
         bch.iter(|| {
-            phong::shade_gbuffer_rgba8(
-                black_box(&model),
-                &m20,
-                &scene,
-                black_box(&buffer),
-                &mut frame,
-            )
+            phong::shade_gbuffer_rgba8(black_box(&model), &m20, &scene, black_box(&buffer), frame)
         })
     });
-    let mut terms: Vec<Vec<f32>> = (0..9).map(|_| vec![0.0; n]).collect();
     g.bench_function("gbuffer_terms", |bch| {
         bch.iter(|| {
             let [ar, ag, ab, dr, dg, db, sr, sg, sb] = &mut terms[..] else {
@@ -784,13 +802,7 @@ fn gbuffer_4096(c: &mut Criterion) {
     });
     g.bench_function("gbuffer_albedo8_rgba8", |bch| {
         bch.iter(|| {
-            phong::shade_gbuffer_rgba8(
-                black_box(&model),
-                &m20,
-                &scene,
-                black_box(&buffer8),
-                &mut frame,
-            )
+            phong::shade_gbuffer_rgba8(black_box(&model), &m20, &scene, black_box(&buffer8), frame)
         })
     });
     g.finish();
