@@ -865,7 +865,11 @@ fn main() {
          shininess uniform in [2, 128] (fractional), and a shadow factor per point, into linear \
          `f32` and into 8-bit RGBA (`shade_gbuffer_rgba8`), against `batch_frac` (`shade_batch`, \
          the same points under one material of shininess 20.5). Phong, one point light, best \
-         level, million points per second:\n\n\
+         level, million points per second. Every array of the group is carved from one buffer \
+         at staggered 4 KiB offsets, as `batch_frac`'s are (until 2026-11-28 they were separate \
+         `Vec`s that started 16 bytes apart within a page, and 4 KiB aliasing between their \
+         loads and stores cost the G-buffer rows about a tenth in interleaved runs; a renderer \
+         whose planes are separate page-aligned allocations meets the same aliasing):\n\n\
          | `batch_frac` | `shade_gbuffer` (`f32`) | ratio | `shade_gbuffer_rgba8` | ratio | \
          RGBA8 with 8-bit sRGB albedo | ratio | `shade_gbuffer_terms` | ratio | `batch_frac` at \
          `259b7f8` |\n\
