@@ -43,6 +43,10 @@ use phong::{
 
 use phong_tools::bench_scene::*;
 
+/// The padding between arrays carved from one buffer: 272 `f32`s, 1088 bytes, so that arrays of
+/// 4096 points start at different offsets within a 4 KiB page.
+const STAGGER: usize = 272;
+
 /// Nine structure-of-arrays slices carved from one buffer at staggered offsets, so no two arrays
 /// start at the same offset within a 4 KiB page (4 KiB aliasing between arrays at equal page offsets).
 struct Soa {
@@ -52,7 +56,7 @@ struct Soa {
 }
 impl Soa {
     fn new(n: usize) -> Self {
-        let stride = n + 272; // 1088 bytes: a different 4 KiB offset per array
+        let stride = n + STAGGER; // a different 4 KiB offset per array
         Soa {
             buf: vec![0.0; 9 * stride + 64],
             n,
@@ -677,7 +681,7 @@ fn gbuffer_4096(c: &mut Criterion) {
     // Every array of the group carved from one buffer at staggered 4 KiB offsets, as
     // `batch_frac`'s are (`Soa`): separate `Vec`s of 16 KiB each start 16 bytes apart within a
     // page, and 4 KiB aliasing between them slows the loop.
-    let stride = n + 272;
+    let stride = n + STAGGER;
     let mut arena = vec![0.0f32; 27 * stride];
     let (inputs, outputs) = arena.split_at_mut(13 * stride);
     let columns: [Vec<f32>; 13] = [
@@ -690,9 +694,9 @@ fn gbuffer_4096(c: &mut Criterion) {
         tr,
         tg,
         tb,
-        strength.clone(),
+        strength,
         shininess,
-        shadow.clone(),
+        shadow,
         vec![1.0; n],
     ];
     for (k, column) in columns.iter().enumerate() {
@@ -750,11 +754,11 @@ fn gbuffer_4096(c: &mut Criterion) {
     for i in 0..n {
         let surface = phong::Surface::textured(
             Vec3::from(texel[i]),
-            Vec3::splat(strength[i]),
+            Vec3::splat(strength_s[i]),
             shininess_s[i],
         );
         let want = shader
-            .shade_surface(p[i], nn[i], &surface, [shadow[i]])
+            .shade_surface(p[i], nn[i], &surface, [shadow_s[i]])
             .total();
         assert_close("gbuffer", Vec3::new(r[i], gr[i], b[i]), want, i);
     }
