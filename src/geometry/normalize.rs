@@ -83,18 +83,19 @@ pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
 /// `(normalize_or_zero(v), length(v))` for any `v`, inline and without a branch or a call: the
 /// rare cases of the functions here, and the whole of [`normalize_full`].
 ///
-/// Scales `v` by the power of two `2^(127−e)` that brings its largest component (biased exponent
-/// `e`, clamped to `[0, 253]`) into `[1, 4)`. The scaling is exact, so the direction is the
+/// Scales `v` by the power of two `2^(127−e)` that brings its largest component (`e` from its
+/// biased exponent, see [`scales`]) into `[1, 4)`. The scaling is exact, so the direction is the
 /// correctly scaled one for every finite input (and, where `v·v` neither overflows nor
-/// underflows, the same bits as `v · (1/√(v·v))`); the squared length lies in `[2⁻⁴⁴, 48)`.
+/// underflows, the same bits as `v · (1/√(v·v))`); the squared length lies in `[2⁻⁴⁶, 48)`.
 /// Zero, NaN and infinite components give `(0, 0)`.
 #[inline(always)]
 fn full_range(v: Vec3) -> (Vec3, f32) {
-    // A NaN reads as the cap in `scales`; `valid` below rejects it.
+    // A NaN or infinite component leaves a NaN or `+∞` in `w` (see `scales`), which `valid`
+    // rejects.
     let (scale, unscale) = scales(v);
     let w = v * scale;
     let w2 = w.length_squared();
-    // NaN fails both tests; a zero vector gives 0 and an infinite component +∞.
+    // NaN fails both tests; a zero vector gives 0.
     let valid = (w2 > 0.0) & (w2 < f32::INFINITY);
     let root = math::sqrt(w2);
     let len = math::min_or(root * unscale, math::MAX);
@@ -102,22 +103,25 @@ fn full_range(v: Vec3) -> (Vec3, f32) {
     if valid { (dir, len) } else { (Vec3::ZERO, 0.0) }
 }
 
-/// The largest `f32` below `2^127` (biased exponent 253).
-const BELOW_2_127: f32 = f32::from_bits(0x7eff_ffff);
-
-/// The power of two `2^(127−e)` that brings the largest magnitude `m` of `v` (biased exponent
-/// `e`, capped at 253) into `[1, 2)` (into `[2⁻²², 1)` for a subnormal `m`, `e = 0`), and its
-/// inverse `2^(e−127)` (the subnormal `2⁻¹²⁷` for `e = 0`).
+/// The power of two `2^(127−e)` for the largest magnitude `m` of `v`, and its inverse
+/// `2^(e−127)`, with `e` the biased exponent of `m / 2` with its lowest bit set: `e` is `E − 1` or
+/// `E` for `m`'s own exponent `E ≥ 2`, and 1 for smaller `m`. It brings `m` into `[1, 4)` (into
+/// `[2⁻²³, 2)` for a zero or subnormal `m`), and both are normal powers of two for every finite
+/// `m`. Where `m` is infinite or NaN the scale is `−∞`, so `m · scale` is infinite or NaN.
+///
+/// Four instructions after `m`, none a compare or a select (which SSE2 would need for an integer
+/// clamp): the halving, an `and` and an `or` for `e`, and one integer subtraction. Halving `m`
+/// keeps `e ≤ 253` and setting the bit keeps `e ≥ 1`, so the scale's exponent field lies in
+/// `[1, 253]` without a clamp.
 #[inline(always)]
 fn scales(v: Vec3) -> (f32, f32) {
     let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
-    let m = math::min_or(math::max_or(math::max_or(ax, ay), az), BELOW_2_127);
-    let e_bits = m.to_bits() & 0x7f80_0000;
-    // `e_bits` is 0 or at least `0x0080_0000`, so a `max` picks `2⁻¹²⁷` for 0 and `e_bits`
-    // otherwise: one instruction where a compare and a select take three. Both operands are
-    // non-negative, whose float order is their bits' order.
-    let unscale = math::max_or(f32::from_bits(e_bits), f32::from_bits(0x0040_0000));
-    (f32::from_bits(0x7f00_0000 - e_bits), unscale)
+    let m = math::max_or(math::max_or(ax, ay), az);
+    let e_bits = ((0.5 * m).to_bits() & 0x7f80_0000) | 0x0080_0000;
+    (
+        f32::from_bits(0x7f00_0000_u32.wrapping_sub(e_bits)),
+        f32::from_bits(e_bits),
+    )
 }
 
 /// [`normalize_or_zero`] of a *finite* `v` by the full-range formula alone: no range test, no
@@ -131,7 +135,7 @@ fn scales(v: Vec3) -> (f32, f32) {
 pub(crate) fn normalize_full(v: Vec3) -> Vec3 {
     let (scale, _) = scales(v);
     let w = v * scale;
-    // √(w·w) ≥ 2⁻²² for any non-zero finite v; the floor only keeps 0 · (1/0) out for v = 0.
+    // √(w·w) ≥ 2⁻²³ for any non-zero finite v; the floor only keeps 0 · (1/0) out for v = 0.
     w * (1.0 / math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE))
 }
 
@@ -266,5 +270,60 @@ mod tests {
             assert!(rel < tol, "s={s}: {l}");
         }
         assert_eq!(length(Vec3::splat(f32::MAX)), f32::MAX);
+    }
+
+    /// The full-range forms at every exponent of the largest component, subnormals and the top
+    /// binade included, against an `f64` evaluation: the direction within 2 ulp-sized steps of
+    /// `f32` (`4·2⁻²⁴` per component, plus the subnormal inputs' own rounding) and the length
+    /// within the same relative error.
+    #[test]
+    fn full_range_forms_hold_at_every_exponent() {
+        let mut checked = 0;
+        for e in 0u32..=254 {
+            for mantissa in [0u32, 1, 0x40_0000, 0x7f_ffff] {
+                let big = f32::from_bits(e << 23 | mantissa);
+                if big == 0.0 {
+                    continue;
+                }
+                for (fy, fz) in [(0.0f32, 0.0f32), (-0.75, 0.5), (1.0, -1.0)] {
+                    let v = Vec3::new(big, fy * big, fz * big);
+                    let (x, y, z) = (v.x as f64, v.y as f64, v.z as f64);
+                    let len = (x * x + y * y + z * z).sqrt();
+                    // A subnormal component carries fewer bits than the f32 arithmetic.
+                    let tol = 4.0 * f64::from(f32::EPSILON) + 2f64.powi(-149) / big.abs() as f64;
+                    let (dir, l) = full_range(v);
+                    let want = [x / len, y / len, z / len];
+                    for (got, d) in [(dir, "full_range"), (normalize_full(v), "normalize_full")] {
+                        for (g, w) in got.to_array().into_iter().zip(want) {
+                            assert!(
+                                (g as f64 - w).abs() <= tol,
+                                "{d}: v = {v:?}: {got} vs {want:?}"
+                            );
+                        }
+                    }
+                    let want_len = len.min(f32::MAX as f64);
+                    assert!(
+                        (l as f64 - want_len).abs() <= tol * want_len,
+                        "v = {v:?}: {l:e}"
+                    );
+                    let (dir2, l2) = direction_and_distance_full(v, Vec3::ZERO);
+                    assert_eq!((dir2, l2.to_bits()), (dir, l.to_bits()), "v = {v:?}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 3000, "{checked}");
+        // Zero, NaN and infinite components.
+        assert_eq!(full_range(Vec3::ZERO), (Vec3::ZERO, 0.0));
+        assert_eq!(normalize_full(Vec3::ZERO), Vec3::ZERO);
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            for v in [
+                Vec3::new(bad, 1.0, 0.0),
+                Vec3::new(1.0, 0.0, bad),
+                Vec3::splat(bad),
+            ] {
+                assert_eq!(full_range(v), (Vec3::ZERO, 0.0), "{v}");
+            }
+        }
     }
 }
