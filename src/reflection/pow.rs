@@ -535,15 +535,20 @@ pub(crate) fn auto_split(s: f32) -> (u32, f32) {
     }
 }
 
-/// `Auto`'s `(n, f)` for an exponent `e ≥ 0` that is a point's own (a shininess per texel):
-/// `(0, e)`, the polynomial at every exponent, whole ones included. With one exponent for many
-/// points the choice between squaring and the polynomial is made once ([`auto_split`]); with one
-/// per point it would be made at every point, and where the compiler vectorises the caller's
-/// loop both forms would run for every point. The polynomial's error at a whole exponent is its
-/// error anywhere else (the `Poly7` rows of the pow-strategy table in docs/performance.md).
+/// `Auto`'s `(n, f)` for an exponent `e ∈ [0, f32::MAX]` (sanitised by the caller) that is a
+/// point's own (a shininess per texel): `(0, e)`, the polynomial at every exponent, whole ones
+/// included. With one exponent for many points the choice between squaring and the polynomial is
+/// made once ([`auto_split`]); with one per point it would be made at every point, and where the
+/// compiler vectorises the caller's loop both forms would run for every point. The polynomial's
+/// error at a whole exponent is its error anywhere else (the `Poly7` rows of the pow-strategy
+/// table in docs/performance.md).
 #[inline(always)]
 pub(crate) fn auto_split_per_point(e: f32) -> (u32, f32) {
-    (0, math::clamp_or_lo(e, 0.0, math::MAX))
+    debug_assert!(
+        (0.0..=math::MAX).contains(&e),
+        "auto_split_per_point: exponent {e}"
+    );
+    (0, e)
 }
 
 /// `Σ c[k] t^k` by Estrin's scheme (`N ≤ 8`).

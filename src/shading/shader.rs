@@ -878,7 +878,11 @@ fn plan_for(resolved: Option<ResolvedModel>, s: f32, shared: bool) -> SpecularPl
         // evaluation has no branch on the shininess, decided inline, without `at_shininess`'s
         // general plan: `shade_surface` runs it per point.
         Some(r) if r.pow == PowStrategy::Auto => {
-            let s = math::clamp_or_lo(s, 0.0, math::MAX);
+            // Both callers pass a sanitised shininess: a material's own, or a point's as
+            // `shade_surface` clamps it. Clamping again here and in `auto_split_per_point` cost
+            // a point's own exponent two more `max`/`min` pairs in a vectorised loop, where the
+            // compiler cannot see that a clamp is idempotent.
+            debug_assert!((0.0..=math::MAX).contains(&s), "plan_for: shininess {s}");
             let (scale, e) = match r.lobe {
                 Lobe::None => (0.0, 0.0),
                 Lobe::Phong => (r.normalization.phong_factor(s), s),
