@@ -628,6 +628,65 @@ fn main() {
             );
         }
     }
+    // The levels (issue 11): AVX2 ≥ 0.6× and SSE2 ≥ 0.3× the AVX-512 level, SSE2 above
+    // portable, and AVX-512 no slower than at 259b7f8 (`b259`), per model and shininess.
+    for kind in [Kind::Phong, Kind::Blinn] {
+        for sh in [32.0f32, 20.5] {
+            let at = |lv: &str, base: &str| {
+                mpts(
+                    "levels_4096",
+                    &format!("{}/{lv}_{sh}", kind.name()),
+                    4096,
+                    base,
+                )
+            };
+            let top = at("avx512", "new");
+            let rows = [
+                (
+                    "avx2",
+                    "0.6× the AVX-512 level",
+                    at("avx2", "new"),
+                    top,
+                    0.6,
+                ),
+                (
+                    "sse2",
+                    "0.3× the AVX-512 level",
+                    at("sse2", "new"),
+                    top,
+                    0.3,
+                ),
+                (
+                    "sse2",
+                    "1× portable",
+                    at("sse2", "new"),
+                    at("portable", "new"),
+                    1.0,
+                ),
+                (
+                    "avx512",
+                    "1× 259b7f8's AVX-512",
+                    top,
+                    at("avx512", "b259"),
+                    1.0,
+                ),
+            ];
+            for (lv, what, ours, base, goal) in rows {
+                let r = ours.zip(base).map(|(o, b)| o / b);
+                let status = match r {
+                    Some(r) if r >= goal => "met".to_string(),
+                    Some(r) => format!("missed by {:.1}%", (1.0 - r / goal) * 100.0),
+                    None => "not measured (the level is missing on this host)".to_string(),
+                };
+                let _ = writeln!(
+                    md,
+                    "| `{lv}` ≥ {what}, {} s = {sh} | levels_4096 | {}× | {status} |",
+                    kind.name(),
+                    fmt_opt(r, 2)
+                );
+            }
+        }
+    }
     let _ = writeln!(
         md,
         "\n## Real-shaped groups (`cargo bench --bench renderers`; `raster_frame`: `cargo bench -p raster`)\n"
