@@ -312,6 +312,16 @@ fn mpts(group: &str, function: &str, n: usize, which: &str) -> Option<f64> {
     Some(n as f64 / t * 1e3)
 }
 
+/// A targets-table status for a ratio that must reach `goal`: "met", or how far short it fell,
+/// or `missing` where the run has no figure.
+fn status_at_least(r: Option<f64>, goal: f64, missing: &str) -> String {
+    match r {
+        Some(r) if r >= goal => "met".to_string(),
+        Some(r) => format!("missed by {:.1}%", (1.0 - r / goal) * 100.0),
+        None => missing.to_string(),
+    }
+}
+
 fn fmt_opt(x: Option<f64>, digits: usize) -> String {
     x.map_or("–".into(), |v| format!("{v:.digits$}"))
 }
@@ -577,11 +587,7 @@ fn main() {
         };
         for &(f, goal) in want {
             let r = mpts(group, f, n, "new").zip(naive).map(|(a, b)| a / b);
-            let status = match r {
-                Some(r) if r >= goal => "met".to_string(),
-                Some(r) => format!("missed by {:.1}%", (1.0 - r / goal) * 100.0),
-                None => "not measured".to_string(),
-            };
+            let status = status_at_least(r, goal, "not measured");
             let _ = writeln!(
                 md,
                 "| `{f}` ≥ {goal}× `naive_glam` | {group} | {}× | {status} |",
@@ -616,11 +622,7 @@ fn main() {
         let ours = mpts("gbuffer_4096", f, 4096, "new");
         for (base, which) in [(frac_now, "this run's"), (frac_259, "259b7f8's")] {
             let r = ours.zip(base).map(|(o, b)| o / b);
-            let status = match r {
-                Some(r) if r >= 0.8 => "met".to_string(),
-                Some(r) => format!("missed by {:.1}%", (1.0 - r / 0.8) * 100.0),
-                None => "not measured".to_string(),
-            };
+            let status = status_at_least(r, 0.8, "not measured");
             let _ = writeln!(
                 md,
                 "| `{f}` ({label}) ≥ 0.8× {which} `batch_frac` | gbuffer_4096 | {}× | {status} |",
@@ -673,11 +675,8 @@ fn main() {
             ];
             for (lv, what, ours, base, goal) in rows {
                 let r = ours.zip(base).map(|(o, b)| o / b);
-                let status = match r {
-                    Some(r) if r >= goal => "met".to_string(),
-                    Some(r) => format!("missed by {:.1}%", (1.0 - r / goal) * 100.0),
-                    None => "not measured (the level is missing on this host)".to_string(),
-                };
+                let status =
+                    status_at_least(r, goal, "not measured (the level is missing on this host)");
                 let _ = writeln!(
                     md,
                     "| `{lv}` ≥ {what}, {} s = {sh} | levels_4096 | {}× | {status} |",
