@@ -212,11 +212,29 @@ pub(crate) struct Setup<'a> {
     /// The first lights, prepared; all of them when `all_prepared`.
     pub(crate) prepared: [PreparedLight; PREPARED],
     pub(crate) all_prepared: bool,
-    /// Whether the loop may call out of line: a light of the scene is a [`LaneLight::Falloff`],
-    /// or the pow plan is [`PowPlan::Exact`] (`powf` per lane). Without either, the plain calls'
-    /// loop is compiled with no call in it, around which every vector register would have to be
-    /// saved: measured, 10–15% of the AVX-512 level's time.
+    /// Whether the loop may call out of line for the material's own lobe: the scene has a
+    /// light that does ([`Setup::lights_call_out`]), or the pow plan is [`PowPlan::Exact`]
+    /// (`powf` per lane). Otherwise the loop is compiled with no call in it, around which every
+    /// live vector register would have to be saved: measured, 10–15% of the AVX-512 level's
+    /// time.
     pub(crate) calls_out: bool,
+    /// The same for a per-point surface, whose lobe takes the polynomial power whatever the
+    /// plan: only the exact Blinn-Phong normalisation (`powf` per lane) adds a call.
+    pub(crate) surface_calls_out: bool,
+}
+
+impl Setup<'_> {
+    /// Whether some light needs a call: a [`LaneLight::Falloff`] (evaluated out of line), or a
+    /// light past the first [`PREPARED`] (prepared per chunk through [`Call::light`]). A call in
+    /// the light loop, even on a branch never taken, made the AVX-512 level keep its sums on the
+    /// stack: 8–10% of its time in `levels_4096`.
+    fn lights_call_out<L: BatchLight>(scene: &Scene<'_, L>) -> bool {
+        scene.lights.len() > PREPARED
+            || scene
+                .lights
+                .iter()
+                .any(|l| matches!(l.lane_light(), Some(LaneLight::Falloff { .. })))
+    }
 }
 
 /// The call's model and scene with their types: the kernel's way out to them, as a trait object,
@@ -332,17 +350,16 @@ impl<'a> Setup<'a> {
             *slot = prepare_light(light, material, &lm);
         }
         let folded = cannot_overflow(scene, material, &lm);
+        let lights_call = Self::lights_call_out(scene);
         let ambient = crate::light::sanitize_colour(scene.ambient);
         let sat = Vec3::splat(math::MAX);
         Setup {
             prepared,
             all_prepared: scene.lights.len() <= PREPARED,
             lights: scene.lights.len(),
-            calls_out: matches!(plan, PowPlan::Exact { .. })
-                || scene
-                    .lights
-                    .iter()
-                    .any(|l| matches!(l.lane_light(), Some(LaneLight::Falloff { .. }))),
+            calls_out: lights_call || matches!(plan, PowPlan::Exact { .. }),
+            surface_calls_out: lights_call
+                || (lm.lobe == Lobe::Blinn && lm.normalization == Normalization::EnergyExact),
             material,
             lm,
             plan,
@@ -904,7 +921,7 @@ where
     let max = s.splat(math::MAX);
     let nn = dot(s, n, n);
     let mut ok = in_range(s, nn);
-    if !CALLS && matches!(k.plan, PowPlan::Exact { .. }) {
+    if !CALLS && surface.is_none() && matches!(k.plan, PowPlan::Exact { .. }) {
         // Never met (see `Setup::calls_out`); were it met, the scalar path shades every lane.
         ok = s.and(ok, s.lt(zero, zero));
     }
@@ -1076,7 +1093,8 @@ where
     }
     for j in 0..k.lights {
         let owned;
-        let lj: &LightLanes<S> = if k.all_prepared {
+        let lj: &LightLanes<S> = if !CALLS || k.all_prepared {
+            // Without calls, every light is prepared (`Setup::calls_out`).
             &lights[j % PREPARED]
         } else {
             owned = LightLanes::new(s, call.light(k, j), FOLDED);
@@ -1161,10 +1179,16 @@ pub(crate) fn run<S: Kernels, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>
     // A per-point surface without visibilities runs the instance with both, its visibilities
     // read as 1 (`PointInputs::visibility`): `f·clamp(1, 0, 1)` is `f`, so the bits are those
     // of an instance without them, and the build compiles one kernel fewer per level and sink.
+    let k = job.setup;
     match job.inputs.per_point_surface() {
-        false if job.setup.folded => s.instance::<O, true, true, false, true>(job),
-        false => s.instance::<O, false, true, false, true>(job),
-        true => s.instance::<O, false, true, true, true>(job),
+        false => match (k.folded, k.calls_out) {
+            (true, true) => s.instance::<O, true, true, false, true>(job),
+            (true, false) => s.instance::<O, true, false, false, true>(job),
+            (false, true) => s.instance::<O, false, true, false, true>(job),
+            (false, false) => s.instance::<O, false, false, false, true>(job),
+        },
+        true if k.surface_calls_out => s.instance::<O, false, true, true, true>(job),
+        true => s.instance::<O, false, false, true, true>(job),
     }
 }
 
