@@ -1311,7 +1311,7 @@ where
     // The first lights' constants in every lane, once per call (a loop, not `array::from_fn`: a
     // closure may be left out of line, without the level's target features).
     let mut lights = [LightLanes::new(s, k.prepared[0], FOLDED); PREPARED];
-    for (slot, light) in lights.iter_mut().zip(k.prepared).skip(1) {
+    for (slot, light) in lights.iter_mut().zip(k.prepared).take(k.lights).skip(1) {
         *slot = LightLanes::new(s, light, FOLDED);
     }
     // One chunk: a macro, not a closure (a closure may be left out of line, without the
