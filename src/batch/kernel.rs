@@ -882,18 +882,37 @@ pub(crate) struct LightLanes<S: Simd> {
     la: [S::V; 3],
     ld: [S::V; 3],
     ls: [S::V; 3],
+    /// Whether the attenuation's denominator may pass `f32::MAX` at a distance the range tests
+    /// let through (see [`LightLanes::may_overflow`]).
+    may_overflow: bool,
 }
 
 impl<S: Simd> LightLanes<S> {
+    /// Whether `c + l·d + q·d²` may reach `f32::MAX` for some `d ≤ 10¹⁵`: the lanes the kernel
+    /// keeps have `d² ≤ HI = 10³⁰`, so otherwise no lane needs the test. Bounded in `f64` with a
+    /// factor of two to spare for the lanes' rounding and their inverse square root's error.
+    fn may_overflow(coefficients: [f32; 3]) -> bool {
+        let [c, l, q] = coefficients.map(f64::from);
+        // √HI.
+        let d = 1e15;
+        // NaN coefficients never reach here (the light is validated); were one there, `!(<)`
+        // keeps the test.
+        !(c + l * d + q * d * d < f64::from(f32::MAX) / 2.0)
+    }
+
     #[inline(always)]
     fn new(s: S, light: PreparedLight, folded: bool) -> Self {
-        let (q, c) = match light.lane {
+        let (q, c, may_overflow) = match light.lane {
             LaneLight::Point {
                 position,
                 coefficients,
-            } => (position, Vec3::from_array(coefficients)),
-            LaneLight::Directional(d) => (d, Vec3::ZERO),
-            LaneLight::AmbientOnly | LaneLight::Falloff { .. } => (Vec3::ZERO, Vec3::ZERO),
+            } => (
+                position,
+                Vec3::from_array(coefficients),
+                Self::may_overflow(coefficients),
+            ),
+            LaneLight::Directional(d) => (d, Vec3::ZERO, false),
+            LaneLight::AmbientOnly | LaneLight::Falloff { .. } => (Vec3::ZERO, Vec3::ZERO, false),
         };
         let (la, ld, ls) = if folded {
             (light.ka, light.kd, light.ks)
@@ -907,6 +926,7 @@ impl<S: Simd> LightLanes<S> {
             la: splat3(s, la),
             ld: splat3(s, ld),
             ls: splat3(s, ls),
+            may_overflow,
         }
     }
 }
@@ -1012,8 +1032,11 @@ where
                 let dist = s.mul(dd, inv);
                 let den = s.mul_add(dist, s.mul_add(c2, dist, c1), c0);
                 // A denominator past f32::MAX (coefficients near it) is evaluated in f64 by
-                // `Attenuation::factor`: such lanes go to the scalar path.
-                ok = s.and(ok, s.lt(den, s.splat(f32::INFINITY)));
+                // `Attenuation::factor`: such lanes go to the scalar path. Tested only where
+                // the light's coefficients allow it, a branch the same for every chunk.
+                if lj.may_overflow {
+                    ok = s.and(ok, s.lt(den, s.splat(f32::INFINITY)));
+                }
                 let att = s.div(one, s.max(den, s.splat(Attenuation::MIN_DENOMINATOR)));
                 (
                     s.mul(dot(s, n, &d), s.mul(inv_n, inv)),
@@ -1509,6 +1532,36 @@ mod tests {
                 assert_eq!(y.to_bits(), want.to_bits(), "{level}: {x:e}^{n}");
             }
         }
+    }
+
+    /// Where `may_overflow` lets the kernel skip its test, the `f32` denominator stays finite
+    /// at the largest distance a kept lane can have (`√HI`, and a little past it for the inverse
+    /// square root's error), for coefficients on both sides of the bound.
+    #[test]
+    fn a_skipped_overflow_test_could_not_have_failed() {
+        // `may_overflow`'s distance is √HI.
+        assert!((f64::from(HI).sqrt() / 1e15 - 1.0).abs() < 1e-6);
+        let d = HI.sqrt() * (1.0 + 1e-3);
+        let mut skipped = 0;
+        for k in 0..=80 {
+            let x = f32::MAX * 2f32.powi(-k);
+            for c in [
+                [x, 0.0, 0.0],
+                [0.0, x / 1e15, 0.0],
+                [0.0, 0.0, x / 1e30],
+                [x, x, x],
+            ] {
+                if LightLanes::<Portable>::may_overflow(c) {
+                    continue;
+                }
+                skipped += 1;
+                let den = d.mul_add(c[2].mul_add(d, c[1]), c[0]);
+                assert!(den < f32::INFINITY, "{c:?}: {den}");
+            }
+        }
+        // The bound is not vacuous: most of these sets skip the test, the largest keep it.
+        assert!(skipped > 200, "{skipped}");
+        assert!(LightLanes::<Portable>::may_overflow([0.0, 0.0, 1e9]));
     }
 
     #[test]
