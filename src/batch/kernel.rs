@@ -223,20 +223,6 @@ pub(crate) struct Setup<'a> {
     pub(crate) surface_calls_out: bool,
 }
 
-impl Setup<'_> {
-    /// Whether some light needs a call: a [`LaneLight::Falloff`] (evaluated out of line), or a
-    /// light past the first [`PREPARED`] (prepared per chunk through [`Call::light`]). A call in
-    /// the light loop, even on a branch never taken, made the AVX-512 level keep its sums on the
-    /// stack: 8–10% of its time in `levels_4096`.
-    fn lights_call_out<L: BatchLight>(scene: &Scene<'_, L>) -> bool {
-        scene.lights.len() > PREPARED
-            || scene
-                .lights
-                .iter()
-                .any(|l| matches!(l.lane_light(), Some(LaneLight::Falloff { .. })))
-    }
-}
-
 /// The call's model and scene with their types: the kernel's way out to them, as a trait object,
 /// so the kernel itself is compiled once per level.
 pub(crate) trait Call {
@@ -322,6 +308,18 @@ impl<M: BatchModel, L: BatchLight> Call for CallOf<'_, '_, M, L> {
 }
 
 impl<'a> Setup<'a> {
+    /// Whether some light needs a call: a [`LaneLight::Falloff`] (evaluated out of line), or a
+    /// light past the first [`PREPARED`] (prepared per chunk through [`Call::light`]). A call in
+    /// the light loop, even on a branch never taken, made the AVX-512 level keep its sums on the
+    /// stack: 8–10% of its time in `levels_4096`.
+    fn lights_call_out<L: BatchLight>(scene: &Scene<'_, L>) -> bool {
+        scene.lights.len() > PREPARED
+            || scene
+                .lights
+                .iter()
+                .any(|l| matches!(l.lane_light(), Some(LaneLight::Falloff { .. })))
+    }
+
     pub(crate) fn new<M: BatchModel, L: BatchLight>(
         model: &M,
         material: &'a Material,
@@ -1444,7 +1442,7 @@ mod tests {
     /// from the scalar one in flushing bases whose power would fall below 2⁻¹⁰⁰ (an absolute
     /// error under 2⁻¹⁰⁰, far below the bound's 2⁻²⁴ floor), and where the level fuses
     /// multiply-adds, in the polynomials' rounding.
-    fn lobe_power_meets_each_strategys_bound<S: Simd>(s: S) {
+    fn lobe_power_meets_each_strategys_bound<S: Simd>(s: S, level: &str) {
         for p in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {
             let (e, x, sh) = worst_over_domain(p, |sh, xs| {
                 let plan = p.plan(sh);
@@ -1452,7 +1450,7 @@ mod tests {
             });
             assert!(
                 e <= p.max_relative_error() as f64,
-                "{p:?}: err {e:e} at x = {x:e}, s = {sh:e}"
+                "{level}, {p:?}: err {e:e} at x = {x:e}, s = {sh:e}"
             );
         }
     }
@@ -1564,57 +1562,38 @@ mod tests {
         assert!(LightLanes::<Portable>::may_overflow([0.0, 0.0, 1e9]));
     }
 
+    /// Runs `$check(level, name)` at every level this CPU has.
+    macro_rules! at_every_level {
+        ($check:ident) => {{
+            $check(Portable, "portable");
+            #[cfg(target_arch = "x86_64")]
+            {
+                use crate::batch::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
+                $check(Sse2, "sse2");
+                if let Some(t) = Avx2::new() {
+                    $check(t, "avx2");
+                }
+                if let Some(t) = Avx512::new() {
+                    $check(t, "avx512");
+                }
+            }
+            #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+            $check(crate::batch::simd::neon::Neon, "neon");
+        }};
+    }
+
     #[test]
     fn squaring_is_the_scalar_ladder_at_every_level() {
-        squaring_is_pow_u32(Portable, "portable");
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::batch::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
-            squaring_is_pow_u32(Sse2, "sse2");
-            if let Some(t) = Avx2::new() {
-                squaring_is_pow_u32(t, "avx2");
-            }
-            if let Some(t) = Avx512::new() {
-                squaring_is_pow_u32(t, "avx512");
-            }
-        }
-        #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
-        squaring_is_pow_u32(crate::batch::simd::neon::Neon, "neon");
+        at_every_level!(squaring_is_pow_u32);
     }
 
     #[test]
     fn the_per_point_power_keeps_its_edges_at_every_level() {
-        per_point_power_edges(Portable, "portable");
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::batch::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
-            per_point_power_edges(Sse2, "sse2");
-            if let Some(t) = Avx2::new() {
-                per_point_power_edges(t, "avx2");
-            }
-            if let Some(t) = Avx512::new() {
-                per_point_power_edges(t, "avx512");
-            }
-        }
-        #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
-        per_point_power_edges(crate::batch::simd::neon::Neon, "neon");
+        at_every_level!(per_point_power_edges);
     }
 
     #[test]
     fn the_lobe_power_meets_each_strategys_bound_at_every_level() {
-        lobe_power_meets_each_strategys_bound(Portable);
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::batch::simd::{avx2::Avx2, avx512::Avx512, sse2::Sse2};
-            lobe_power_meets_each_strategys_bound(Sse2);
-            if let Some(t) = Avx2::new() {
-                lobe_power_meets_each_strategys_bound(t);
-            }
-            if let Some(t) = Avx512::new() {
-                lobe_power_meets_each_strategys_bound(t);
-            }
-        }
-        #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
-        lobe_power_meets_each_strategys_bound(crate::batch::simd::neon::Neon);
+        at_every_level!(lobe_power_meets_each_strategys_bound);
     }
 }
