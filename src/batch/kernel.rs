@@ -498,7 +498,7 @@ impl PointInputs<'_> {
 /// `t²`, `t⁴`, …; the dependency chain is `⌈log2 N⌉` multiply-adds deep instead of Horner's `N`,
 /// which matters because the chains of successive chunks are what limits this loop.
 #[inline(always)]
-fn poly<S: Simd, const N: usize>(s: S, t: S::V, c: &[f32; N]) -> S::V {
+pub(super) fn poly<S: Simd, const N: usize>(s: S, t: S::V, c: &[f32; N]) -> S::V {
     const { assert!(N <= 8, "poly: at most 8 coefficients") };
     let mut cur = [s.splat(0.0); 8];
     for (slot, &k) in cur.iter_mut().zip(c) {

@@ -121,6 +121,24 @@ pub(crate) trait Simd: Copy {
         }
         self.to_bits(self.load(&got))
     }
+
+    /// Whether [`lookup16`](Self::lookup16) runs in registers (a permute instruction), not
+    /// lane by lane through memory.
+    const LOOKUP16_IN_REGISTERS: bool = false;
+
+    /// `table[idx & 15]` per lane: a lookup in a table of sixteen, which the levels with a
+    /// variable permute keep in registers.
+    ///
+    /// One load per lane through memory; the levels with a permute instruction use it.
+    #[inline(always)]
+    fn lookup16(self, table: &[f32; 16], idx: Self::I) -> Self::V {
+        let idx = self.store(self.bits_to_f32(idx));
+        let mut got: super::kernel::Lanes = [0.0; super::kernel::W];
+        for (g, i) in got.iter_mut().zip(idx) {
+            *g = table[(i.to_bits() & 15) as usize];
+        }
+        self.load(&got)
+    }
 }
 
 /// A level's kernel entries: the batch kernel compiled with the level's instructions, for each
@@ -272,7 +290,7 @@ macro_rules! level_entry {
     )
 )]
 macro_rules! simd_by_parts {
-    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident, gather = $gather:ident) => {
+    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident, gather = $gather:ident, lookup16 = $lookup16:ident) => {
         impl $crate::batch::simd::Simd for $token {
             type V = [$n; [$($j),+].len()];
             type I = [$ni; [$($j),+].len()];
@@ -412,6 +430,7 @@ macro_rules! simd_by_parts {
                 [$($native::gt_i(a[$j], b[$j])),+]
             }
             $crate::batch::simd::gather_by_parts!($native, $gather, [$($j),+]);
+            $crate::batch::simd::lookup16_by_parts!($native, $lookup16, [$($j),+]);
         }
     };
 }
@@ -439,6 +458,32 @@ macro_rules! gather_by_parts {
     };
 }
 pub(crate) use gather_by_parts;
+
+#[cfg_attr(
+    not(any(
+        target_arch = "x86_64",
+        all(target_arch = "aarch64", target_feature = "neon")
+    )),
+    allow(
+        unused_macros,
+        unused_imports,
+        reason = "only the vector levels use it; this target has none"
+    )
+)]
+/// [`Simd::lookup16`] for a level built by [`simd_by_parts!`]: the trait's per-lane default
+/// (`default`), or the level's own permute, `$native::lookup16` on each part (`native`).
+macro_rules! lookup16_by_parts {
+    ($native:ident, default, [$($j:expr),+]) => {};
+    ($native:ident, native, [$($j:expr),+]) => {
+        const LOOKUP16_IN_REGISTERS: bool = true;
+
+        #[inline(always)]
+        fn lookup16(self, table: &[f32; 16], idx: Self::I) -> Self::V {
+            [$($native::lookup16(table, idx[$j])),+]
+        }
+    };
+}
+pub(crate) use lookup16_by_parts;
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx2;

@@ -325,18 +325,19 @@ pub(crate) fn level(x: f32) -> u8 {
     ((entry >> 16) + u32::from(bits & 0xffff > entry & 0xffff)) as u8
 }
 
+/// The exact sRGB value in `f64`, what the tests measure the encoders against.
+#[cfg(test)]
+pub(crate) fn srgb64(x: f64) -> f64 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The exact sRGB value in `f64`.
-    fn srgb64(x: f64) -> f64 {
-        if x <= 0.003_130_8 {
-            12.92 * x
-        } else {
-            1.055 * x.powf(1.0 / 2.4) - 0.055
-        }
-    }
 
     #[test]
     fn thresholds_are_the_exact_level_boundaries() {

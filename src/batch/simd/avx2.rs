@@ -35,7 +35,8 @@ simd_by_parts!(
     __m256i,
     __m256,
     native,
-    gather = native
+    gather = native,
+    lookup16 = default
 );
 
 level_entry!(Avx2, features = "avx2,fma");

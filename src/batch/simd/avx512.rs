@@ -10,10 +10,10 @@ use core::arch::x86_64::{
     __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _mm512_add_epi32, _mm512_add_ps,
     _mm512_and_si512, _mm512_cmp_ps_mask, _mm512_cmpgt_epi32_mask, _mm512_cvtepi32_ps,
     _mm512_div_ps, _mm512_fmadd_ps, _mm512_fmsub_ps, _mm512_fnmadd_ps, _mm512_i32gather_epi32,
-    _mm512_mask_blend_ps, _mm512_maskz_mov_epi32, _mm512_maskz_mov_ps, _mm512_max_ps,
-    _mm512_min_epu32, _mm512_min_ps, _mm512_mul_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32,
-    _mm512_set1_ps, _mm512_slli_epi32, _mm512_srai_epi32, _mm512_srli_epi32, _mm512_sub_epi32,
-    _mm512_sub_ps,
+    _mm512_loadu_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_epi32, _mm512_maskz_mov_ps,
+    _mm512_max_ps, _mm512_min_epu32, _mm512_min_ps, _mm512_mul_ps, _mm512_permutexvar_ps,
+    _mm512_rsqrt14_ps, _mm512_set1_epi32, _mm512_set1_ps, _mm512_slli_epi32, _mm512_srai_epi32,
+    _mm512_srli_epi32, _mm512_sub_epi32, _mm512_sub_ps,
 };
 
 use crate::batch::Level;
@@ -37,7 +37,8 @@ simd_by_parts!(
     __m512i,
     __mmask16,
     native,
-    gather = native
+    gather = native,
+    lookup16 = native
 );
 
 level_entry!(Avx512, features = "avx512f,avx512vl,avx2,fma");
@@ -177,5 +178,12 @@ mod native {
             let idx = _mm512_min_epu32(idx, _mm512_set1_epi32(last));
             _mm512_i32gather_epi32::<4>(idx, table.as_ptr())
         }
+    }
+
+    /// `vpermps` over the table in one register (the index's low four bits).
+    #[inline(always)]
+    pub(super) fn lookup16(table: &[f32; 16], idx: __m512i) -> __m512 {
+        // SAFETY: as the module's; the load reads the sixteen entries of `table`.
+        unsafe { _mm512_permutexvar_ps(idx, _mm512_loadu_ps(table.as_ptr())) }
     }
 }

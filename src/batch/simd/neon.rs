@@ -28,7 +28,8 @@ simd_by_parts!(
     int32x4_t,
     uint32x4_t,
     native,
-    gather = default
+    gather = default,
+    lookup16 = default
 );
 
 level_entry!(Neon);

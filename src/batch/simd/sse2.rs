@@ -26,7 +26,8 @@ simd_by_parts!(
     __m128i,
     __m128,
     native,
-    gather = default
+    gather = default,
+    lookup16 = default
 );
 
 level_entry!(Sse2);
