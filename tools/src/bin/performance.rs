@@ -840,12 +840,14 @@ fn main() {
          colour in its vector lanes) against `shade_batch`'s linear `f32` output, the \
          benches' Phong scene at s = 32, best level, million points per second:\n\n\
          | `shade_batch` (`f32`) | `shade_batch_rgba8` | ratio |\n|---:|---:|---:|\n| {} | {} | {} |\n\n\
-         The lanes run `linear_to_srgb8`'s own steps: each lane's table entry is loaded by \
-         `vpgatherdd` at the AVX2 and AVX-512 levels and lane by lane at the others, so the \
-         pixels are `linear_to_srgb8`'s, bit for bit (src/batch/srgb8_lanes.rs and its tests). \
-         Until 2026-11-28 the lanes evaluated the sRGB curve by Poly7's polynomials and sent the \
-         channels near a level boundary to the table; DESIGN.md has that comparison. Per \
-         level, million points per second:\n",
+         The pixels are `linear_to_srgb8`'s, bit for bit, at every level \
+         (src/batch/srgb8_lanes.rs and its tests). At AVX2 each lane's table entry is loaded by \
+         `vpgatherdd`, and lane by lane at SSE2, NEON and portable. At AVX-512 the lanes compute \
+         `255·srgb(x)` to within 1e-3 levels (a table of the binades held in one register, and a \
+         polynomial of degree 5) and round it; a vector with a lane within 2e-3 of a rounding \
+         boundary takes the table instead (about one in sixteen). On this host the 16-lane \
+         gathers were nearly the whole cost of 8-bit output; DESIGN.md has the measurements. \
+         Per level, million points per second:\n",
         fmt_opt(table, 0),
         fmt_opt(pipeline, 0),
         fmt_opt(table.zip(pipeline).map(|(t, p)| t / p), 2),
@@ -949,7 +951,8 @@ fn main() {
          folded sum a single material allows; each 16-lane vector is two of AVX2's sixteen \
          registers, so about a fifth of its instructions are moves to and from the stack \
          (a seventh of `batch_frac`'s); and \
-         the 8-bit encoding adds three table lookups a point (section above). Eight lanes a step \
+         the 8-bit encoding adds three table lookups a point at AVX2 and about 75 vector \
+         operations a chunk at AVX-512 (section above). Eight lanes a step \
          at the AVX2 level, which halves the registers each vector takes, measured about a \
          quarter slower for both calls: the loop is bound by its dependency chains, and two \
          independent halves per vector are what hides their latency. Every level runs its own \
