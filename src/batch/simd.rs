@@ -12,6 +12,11 @@
 //! | `Avx512` | `simd/avx512.rs` | 1 × `__m512`, with FMA and mask registers | `vrsqrt14ps` + one Newton step |
 //! | `Neon` | `simd/neon.rs` | 4 × `float32x4_t`, with FMA | `frsqrte` + two `frsqrts` steps |
 //!
+//! Two table lookups differ more than the rest: `gather` (the 8-bit encoder's bucket table) is
+//! `vpgatherdd` at AVX2 and AVX-512 and lane by lane elsewhere; `lookup16` (a table of sixteen)
+//! is `vpermps` at AVX-512 and lane by lane elsewhere, and `LOOKUP16_IN_REGISTERS` tells the
+//! kernel which it gets.
+//!
 //! A value of an implementing type is a *token*: it exists only where its instructions run (each
 //! level's constructor checks the CPU), so its methods may call the intrinsics. The kernel runs
 //! inside the level's `#[target_feature]` function, where every method inlines into the loop.
@@ -429,8 +434,8 @@ macro_rules! simd_by_parts {
             fn gt_i(self, a: Self::I, b: Self::I) -> Self::I {
                 [$($native::gt_i(a[$j], b[$j])),+]
             }
-            $crate::batch::simd::gather_by_parts!($native, $gather, [$($j),+]);
-            $crate::batch::simd::lookup16_by_parts!($native, $lookup16, [$($j),+]);
+            $crate::batch::simd::table_by_parts!($native, gather = $gather, [$($j),+]);
+            $crate::batch::simd::table_by_parts!($native, lookup16 = $lookup16, [$($j),+]);
         }
     };
 }
@@ -446,35 +451,18 @@ macro_rules! simd_by_parts {
         reason = "only the vector levels use it; this target has none"
     )
 )]
-/// [`Simd::gather`] for a level built by [`simd_by_parts!`]: the trait's per-lane default
-/// (`default`), or the level's own instruction, `$native::gather` on each part (`native`).
-macro_rules! gather_by_parts {
-    ($native:ident, default, [$($j:expr),+]) => {};
-    ($native:ident, native, [$($j:expr),+]) => {
+/// A table lookup of [`Simd`] ([`gather`](Simd::gather), [`lookup16`](Simd::lookup16)) for a
+/// level built by [`simd_by_parts!`]: the trait's per-lane default (`default`), or the level's
+/// own instruction on each part (`native`).
+macro_rules! table_by_parts {
+    ($native:ident, $op:ident = default, [$($j:expr),+]) => {};
+    ($native:ident, gather = native, [$($j:expr),+]) => {
         #[inline(always)]
         fn gather(self, table: &[i32], idx: Self::I) -> Self::I {
             [$($native::gather(table, idx[$j])),+]
         }
     };
-}
-pub(crate) use gather_by_parts;
-
-#[cfg_attr(
-    not(any(
-        target_arch = "x86_64",
-        all(target_arch = "aarch64", target_feature = "neon")
-    )),
-    allow(
-        unused_macros,
-        unused_imports,
-        reason = "only the vector levels use it; this target has none"
-    )
-)]
-/// [`Simd::lookup16`] for a level built by [`simd_by_parts!`]: the trait's per-lane default
-/// (`default`), or the level's own permute, `$native::lookup16` on each part (`native`).
-macro_rules! lookup16_by_parts {
-    ($native:ident, default, [$($j:expr),+]) => {};
-    ($native:ident, native, [$($j:expr),+]) => {
+    ($native:ident, lookup16 = native, [$($j:expr),+]) => {
         const LOOKUP16_IN_REGISTERS: bool = true;
 
         #[inline(always)]
@@ -483,7 +471,7 @@ macro_rules! lookup16_by_parts {
         }
     };
 }
-pub(crate) use lookup16_by_parts;
+pub(crate) use table_by_parts;
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx2;
