@@ -1375,6 +1375,15 @@ where
     for (slot, light) in lights.iter_mut().zip(k.prepared).take(k.lights).skip(1) {
         *slot = LightLanes::new(s, light, FOLDED);
     }
+    // A sink that encodes its output (`Sink::DEFER`: 8-bit pixels) writes each chunk after the
+    // next one is shaded: the encoding's chain of dependent operations then overlaps the next
+    // chunk's shading instead of following its own chunk's (`shade_batch_rgba8` +24% at AVX-512,
+    // +9% at AVX2 on the Zen 4 host; the G-buffer's longer chunks +3%). A chunk with lanes for
+    // the scalar path is written at once (after the one pending), so the scalar path's points
+    // land after the kernel's.
+    let defer = O::DEFER && !O::TERMS;
+    let zero = s.splat(0.0);
+    let mut pending: Option<(usize, usize, [S::V; 3])> = None;
     // One chunk: a macro, not a closure (a closure may be left out of line, without the
     // level's target features).
     macro_rules! chunk_at {
@@ -1392,10 +1401,19 @@ where
                 i,
                 count,
             );
-            out.write(s, i, count, &rows);
             let bad = bad & (u32::MAX >> (32 - count));
-            if bad != 0 {
-                call.fixup((&pos, &nor), per_point, i, bad, &mut |at, t| out.put(at, t));
+            if defer && bad == 0 {
+                if let Some((at, n, total)) = pending.replace((i, count, rows[0])) {
+                    out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
+                }
+            } else {
+                if let Some((at, n, total)) = pending.take() {
+                    out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
+                }
+                out.write(s, i, count, &rows);
+                if bad != 0 {
+                    call.fixup((&pos, &nor), per_point, i, bad, &mut |at, t| out.put(at, t));
+                }
             }
         }};
     }
@@ -1427,6 +1445,9 @@ where
                 load_tail(nor.z, i, count),
             ]
         );
+    }
+    if let Some((at, n, total)) = pending {
+        out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
     }
     len
 }

@@ -15,6 +15,10 @@ pub(crate) trait Sink {
     /// Whether the kernel must give the three terms (otherwise their total, in the first row).
     const TERMS: bool;
 
+    /// Whether [`write`](Self::write) encodes (a chain of dependent operations), so the kernel
+    /// writes a chunk after shading the next (see `kernel::run_with`).
+    const DEFER: bool = false;
+
     /// How many points it holds.
     fn len(&self) -> usize;
 
@@ -159,6 +163,7 @@ impl Pixels8<'_> {
 
 impl Sink for Pixels8<'_> {
     const TERMS: bool = false;
+    const DEFER: bool = true;
     type Part<'b>
         = Pixels8<'b>
     where
