@@ -847,7 +847,9 @@ fn main() {
          polynomial of degree 5) and round it; a vector with a lane within 2e-3 of a rounding \
          boundary takes the table instead (about one in sixteen). On this host the 16-lane \
          gathers were nearly the whole cost of 8-bit output; DESIGN.md has the measurements. \
-         Per level, million points per second:\n",
+         At every level the kernel writes a chunk's pixels after shading the next chunk, so \
+         the encoding's chain of dependent operations runs beside that shading. Per level, \
+         million points per second:\n",
         fmt_opt(table, 0),
         fmt_opt(pipeline, 0),
         fmt_opt(table.zip(pipeline).map(|(t, p)| t / p), 2),
