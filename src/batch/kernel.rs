@@ -1381,9 +1381,17 @@ where
     // +9% at AVX2 on the Zen 4 host; the G-buffer's longer chunks +3%). A chunk with lanes for
     // the scalar path is written at once (after the one pending), so the scalar path's points
     // land after the kernel's.
+    // Only the total is held (`!O::TERMS`): the other rows are zero.
     let defer = O::DEFER && !O::TERMS;
     let zero = s.splat(0.0);
     let mut pending: Option<(usize, usize, [S::V; 3])> = None;
+    macro_rules! write_total {
+        ($held:expr) => {
+            if let Some((at, n, total)) = $held {
+                out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
+            }
+        };
+    }
     // One chunk: a macro, not a closure (a closure may be left out of line, without the
     // level's target features).
     macro_rules! chunk_at {
@@ -1403,13 +1411,9 @@ where
             );
             let bad = bad & (u32::MAX >> (32 - count));
             if defer && bad == 0 {
-                if let Some((at, n, total)) = pending.replace((i, count, rows[0])) {
-                    out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
-                }
+                write_total!(pending.replace((i, count, rows[0])));
             } else {
-                if let Some((at, n, total)) = pending.take() {
-                    out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
-                }
+                write_total!(pending.take());
                 out.write(s, i, count, &rows);
                 if bad != 0 {
                     call.fixup((&pos, &nor), per_point, i, bad, &mut |at, t| out.put(at, t));
@@ -1446,9 +1450,7 @@ where
             ]
         );
     }
-    if let Some((at, n, total)) = pending {
-        out.write(s, at, n, &[total, [zero; 3], [zero; 3]]);
-    }
+    write_total!(pending);
     len
 }
 

@@ -113,7 +113,7 @@ pub(crate) trait Simd: Copy {
     /// `table[idx]` per lane, with each index first clamped into the table (as unsigned, so a
     /// negative one reads the last entry): a table lookup that cannot read outside it.
     ///
-    /// One load per lane through memory; the levels with a gather instruction use it.
+    /// One load per lane through memory; the levels with a gather instruction override it.
     #[inline(always)]
     fn gather(self, table: &[i32], idx: Self::I) -> Self::I {
         let last = table.len().saturating_sub(1);
@@ -134,7 +134,7 @@ pub(crate) trait Simd: Copy {
     /// `table[idx & 15]` per lane: a lookup in a table of sixteen, which the levels with a
     /// variable permute keep in registers.
     ///
-    /// One load per lane through memory; the levels with a permute instruction use it.
+    /// One load per lane through memory; the levels with a permute instruction override it.
     #[inline(always)]
     fn lookup16(self, table: &[f32; 16], idx: Self::I) -> Self::V {
         let idx = self.store(self.bits_to_f32(idx));

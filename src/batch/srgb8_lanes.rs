@@ -26,8 +26,9 @@
 //!
 //!   About one vector in sixteen has such a lane (`2·MARGIN` per lane). On the development
 //!   machine (Zen 4) a 16-lane `vpgatherdd` per colour channel cost about 2 ns a point, and the
-//!   arithmetic about 1.3 (docs/performance.md). At AVX2, where the permute takes four
-//!   instructions per half, the gather measured about 5% faster, so AVX2 keeps it.
+//!   arithmetic about 1.3 (the G-buffer's RGBA8 row against its `f32` row: DESIGN.md, "What
+//!   did not work out"). At AVX2, where the permute takes four instructions per half, the
+//!   gather measured 5–8% faster, so AVX2 keeps it.
 
 use super::kernel::poly;
 use super::simd::Simd;
