@@ -641,7 +641,8 @@ fn aos_group(c: &mut Criterion, name: &str, n: usize) {
 /// `gbuffer_4096`: deferred shading of a G-buffer with a per-point surface (textured colours,
 /// shininess uniform in [2, 128], fractional) and a shadow factor per point, through
 /// `shade_gbuffer` into `f32`, into 8-bit RGBA and (`gbuffer_terms`) into the three terms, against `batch_frac` (the same scene and
-/// points with one material of shininess 20.5, `shade_batch`).
+/// points with one material of shininess 20.5, `shade_batch`); `_tinted`: the first two under a
+/// light whose diffuse colour is not grey.
 fn gbuffer_4096(c: &mut Criterion) {
     let n = 4096;
     let (p, nn) = points(n, 0x5eed);
@@ -807,6 +808,34 @@ fn gbuffer_4096(c: &mut Criterion) {
     g.bench_function("gbuffer_albedo8_rgba8", |bch| {
         bch.iter(|| {
             phong::shade_gbuffer_rgba8(black_box(&model), &m20, &scene, black_box(&buffer8), frame)
+        })
+    });
+    // The scene's light is grey (LearnOpenGL's), which lets the kernel keep one sum per term;
+    // the same calls under a tinted light keep three (`_tinted`).
+    let tinted_lights = [PointLight::try_new(
+        LIGHT_POS,
+        Attenuation::try_polynomial(ATT.0, ATT.1, ATT.2).unwrap(),
+        LightColors::try_new(LA, LD * Vec3::new(1.0, 0.9, 0.8), LS).unwrap(),
+    )
+    .unwrap()];
+    let tinted = Scene {
+        lights: &tinted_lights,
+        ..scene
+    };
+    g.bench_function("gbuffer_f32_tinted", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer(
+                black_box(&model),
+                &m20,
+                &tinted,
+                black_box(&buffer),
+                SoaRgb::new(r, gr, b),
+            )
+        })
+    });
+    g.bench_function("gbuffer_rgba8_tinted", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer_rgba8(black_box(&model), &m20, &tinted, black_box(&buffer), frame)
         })
     });
     g.finish();

@@ -56,7 +56,10 @@
 //! a saturated one. (When the colours, attenuation and normalisation of a call cannot bring any
 //! sum within a factor 2 of `f32::MAX` at any point, the kernels sum the products `Ka⊙La`, … per
 //! light instead, which keeps three accumulators rather than nine: the same values up to
-//! rounding, at the speed of the unsaturated equation.)
+//! rounding, at the speed of the unsaturated equation. With per-point surfaces, where that is
+//! never done, a scene whose lights and ambient light are all grey (`Vec3::splat` colours, as in
+//! LearnOpenGL's scenes) keeps one sum per term instead of three: every channel's sums are the
+//! same operations on the same values, so the results are the same bits.)
 //!
 //! ## Accuracy
 //!

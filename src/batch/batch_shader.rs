@@ -350,3 +350,198 @@ fn scalar<M: BatchModel, L: BatchLight, O: Sink>(
     }
     n
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{
+        Attenuation, BlinnPhong, DirectionalLight, Light, LightColors, Phong, PointLight,
+        SoaSurface, Viewer,
+    };
+
+    /// A G-buffer of `len` points with per-point surfaces and visibilities, with adversarial
+    /// points among them: zero and tiny normals, points at the light and at the viewer, huge
+    /// coordinates, shininess 0 and 1, shadow factors 0, 1 and between.
+    struct Buffer {
+        cols: Vec<Vec<f32>>,
+        vis: Vec<f32>,
+    }
+
+    impl Buffer {
+        fn new(len: usize, lights: usize, at: Vec3, eye: Vec3) -> Self {
+            let mut x = 0x9e37_79b9_u32;
+            let mut next = move || {
+                x ^= x << 13;
+                x ^= x >> 17;
+                x ^= x << 5;
+                (x >> 8) as f32 / (1 << 24) as f32
+            };
+            let mut cols: Vec<Vec<f32>> = (0..16).map(|_| Vec::with_capacity(len)).collect();
+            for i in 0..len {
+                let mut p = Vec3::new(next(), next(), next()) * 4.0 - 2.0;
+                let mut n = Vec3::new(next(), next(), next()) * 2.0 - 1.0;
+                match i % 13 {
+                    1 => n = Vec3::ZERO,
+                    2 => n *= 1e-30,
+                    3 => p = at,
+                    4 => p = eye,
+                    5 => p *= 1e30,
+                    _ => {}
+                }
+                let s = match i % 7 {
+                    1 => 0.0,
+                    2 => 1.0,
+                    _ => 2.0 + 126.0 * next(),
+                };
+                let row = [
+                    p.x,
+                    p.y,
+                    p.z,
+                    n.x,
+                    n.y,
+                    n.z,
+                    next(),
+                    next(),
+                    next(),
+                    next(),
+                    next(),
+                    next(),
+                    next(),
+                    next(),
+                    next(),
+                    s,
+                ];
+                for (c, v) in cols.iter_mut().zip(row) {
+                    c.push(v);
+                }
+            }
+            let vis = (0..len * lights)
+                .map(|i| match i % 5 {
+                    0 => 0.0,
+                    1 => 1.0,
+                    _ => next(),
+                })
+                .collect();
+            Buffer { cols, vis }
+        }
+
+        fn soa(&self, at: usize) -> SoaVec3<'_> {
+            SoaVec3::new(&self.cols[at], &self.cols[at + 1], &self.cols[at + 2])
+        }
+
+        fn gbuffer(&self) -> GBuffer<'_> {
+            GBuffer::new(self.soa(0), self.soa(3))
+                .with_surface(SoaSurface {
+                    ambient: self.soa(6),
+                    diffuse: self.soa(9),
+                    specular: self.soa(12),
+                    shininess: &self.cols[15],
+                })
+                .with_visibility(&self.vis)
+        }
+    }
+
+    fn grey(a: f32, d: f32, s: f32) -> LightColors {
+        LightColors::try_new(Vec3::splat(a), Vec3::splat(d), Vec3::splat(s)).unwrap()
+    }
+
+    /// `f32` and 8-bit output of `shader` with its setup's `grey` as prepared and forced off.
+    fn both_ways<M: BatchModel, L: BatchLight>(
+        mut shader: BatchShader<'_, '_, M, L>,
+        g: &GBuffer<'_>,
+    ) -> [(Vec<u32>, Vec<[u8; 4]>); 2] {
+        assert!(
+            shader.kernel.as_ref().unwrap().grey,
+            "grey lights not seen as grey"
+        );
+        let len = g.positions.len();
+        let run = |shader: &BatchShader<'_, '_, M, L>| {
+            let (mut r, mut gr, mut b) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
+            shader.shade_gbuffer(g, SoaRgb::new(&mut r, &mut gr, &mut b));
+            let mut px = vec![[0u8; 4]; len];
+            shader.shade_gbuffer_rgba8(g, &mut px);
+            let bits = r.iter().chain(&gr).chain(&b).map(|v| v.to_bits()).collect();
+            (bits, px)
+        };
+        let grey = run(&shader);
+        shader.kernel.as_mut().unwrap().grey = false;
+        [grey, run(&shader)]
+    }
+
+    /// The kernel's instance for grey lights keeps one sum per term where the general one keeps
+    /// three: the same operations on the same values, so the same bits, at every level, for
+    /// every light kind the kernel runs inline, with per-point surfaces and shadows, on
+    /// adversarial points too.
+    #[test]
+    fn grey_lights_shade_the_same_bits_with_one_sum_per_term() {
+        let at = Vec3::new(1.2, 1.0, 2.0);
+        let eye = Vec3::new(0.0, 0.5, 4.0);
+        let quadratic = Attenuation::try_polynomial(1.0, 0.09, 0.032).unwrap();
+        let lights: [Light; 3] = [
+            PointLight::try_new(at, quadratic, grey(0.1, 0.7, 1.0))
+                .unwrap()
+                .into(),
+            DirectionalLight::try_new(Vec3::new(-1.0, 2.0, 0.5), grey(0.05, 0.4, 0.6))
+                .unwrap()
+                .into(),
+            PointLight::try_new(-at, Attenuation::None, grey(0.0, 0.3, 0.3))
+                .unwrap()
+                .into(),
+        ];
+        let m = Material::try_from_color(Vec3::new(0.9, 0.5, 0.2), 24.0).unwrap();
+        for count in [1, 3] {
+            let buffer = Buffer::new(203, count, at, eye);
+            let g = buffer.gbuffer();
+            for ambient in [Vec3::ZERO, Vec3::splat(0.03)] {
+                let scene = Scene {
+                    lights: &lights[..count],
+                    ambient,
+                    viewer: Viewer::At(eye),
+                };
+                for level in Level::supported() {
+                    let phong = Phong::default();
+                    let [a, b] = both_ways(BatchShader::at(level, &phong, &m, &scene), &g);
+                    assert!(a == b, "Phong at {level}, {count} lights: grey sums differ");
+                    let blinn = BlinnPhong::default();
+                    let [a, b] = both_ways(BatchShader::at(level, &blinn, &m, &scene), &g);
+                    assert!(
+                        a == b,
+                        "Blinn-Phong at {level}, {count} lights: grey sums differ"
+                    );
+                }
+            }
+        }
+    }
+
+    /// Grey is seen only where every colour of every light, and the scene's ambient light, has
+    /// three equal channels, and every light is prepared.
+    #[test]
+    fn only_grey_scenes_take_one_sum_per_term() {
+        let m = Material::try_from_color(Vec3::ONE, 8.0).unwrap();
+        let at = Vec3::Y;
+        let point = |c: LightColors| PointLight::try_new(at, Attenuation::None, c).unwrap();
+        let is_grey = |lights: &[PointLight], ambient: Vec3| {
+            let scene = Scene {
+                lights,
+                ambient,
+                viewer: Viewer::At(Vec3::Z),
+            };
+            kernel::Setup::new(&Phong::default(), &m, &scene).grey
+        };
+        let g = grey(0.1, 0.5, 1.0);
+        assert!(is_grey(&[point(g)], Vec3::ZERO));
+        assert!(is_grey(&[], Vec3::splat(0.2)));
+        assert!(!is_grey(&[point(g)], Vec3::new(0.2, 0.2, 0.3)));
+        let tinted = [
+            LightColors::try_new(Vec3::new(0.1, 0.1, 0.2), Vec3::ONE, Vec3::ONE).unwrap(),
+            LightColors::try_new(Vec3::ONE, Vec3::new(1.0, 0.5, 1.0), Vec3::ONE).unwrap(),
+            LightColors::try_new(Vec3::ONE, Vec3::ONE, Vec3::new(1.0, 1.0, 0.9)).unwrap(),
+        ];
+        for c in tinted {
+            assert!(!is_grey(&[point(g), point(c)], Vec3::ZERO), "{c:?}");
+        }
+        // More lights than the kernel prepares: the others are prepared per chunk.
+        assert!(is_grey(&[point(g); kernel::PREPARED], Vec3::ZERO));
+        assert!(!is_grey(&[point(g); kernel::PREPARED + 1], Vec3::ZERO));
+    }
+}

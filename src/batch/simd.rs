@@ -166,6 +166,7 @@ pub(crate) trait Kernels: Copy {
     fn instance<
         O: super::sink::Sink,
         const FOLDED: bool,
+        const GREY: bool,
         const CALLS: bool,
         const SURFACE: bool,
         const VISIBILITY: bool,
@@ -191,6 +192,7 @@ macro_rules! level_entry {
         fn kernel<
             O: $crate::batch::sink::Sink,
             const FOLDED: bool,
+            const GREY: bool,
             const CALLS: bool,
             const SURFACE: bool,
             const VISIBILITY: bool,
@@ -198,13 +200,13 @@ macro_rules! level_entry {
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, FOLDED, CALLS, SURFACE, VISIBILITY>(
+            $crate::batch::kernel::run_with::<$level, O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY>(
                 t, job,
             )
         }
 
         level_entry!(@impl $level, |t, job| level_entry!(@call $($features)?;
-            kernel::<O, FOLDED, CALLS, SURFACE, VISIBILITY>(t, job)));
+            kernel::<O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY>(t, job)));
     };
     // A level that runs only when a caller forces it: one instance per output form, the general
     // one (no folding, per-point inputs read where the call has them), so the build compiles
@@ -216,7 +218,7 @@ macro_rules! level_entry {
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, false, true, true, true>(t, job)
+            $crate::batch::kernel::run_with::<$level, O, false, false, true, true, true>(t, job)
         }
 
         // Every instance is the general one.
@@ -257,6 +259,7 @@ macro_rules! level_entry {
             fn instance<
                 O: $crate::batch::sink::Sink,
                 const FOLDED: bool,
+                const GREY: bool,
                 const CALLS: bool,
                 const SURFACE: bool,
                 const VISIBILITY: bool,

@@ -919,6 +919,8 @@ fn main() {
     let gb_rgba8 = mpts("gbuffer_4096", "gbuffer_rgba8", 4096, "new");
     let gb_albedo8 = mpts("gbuffer_4096", "gbuffer_albedo8_rgba8", 4096, "new");
     let gb_terms = mpts("gbuffer_4096", "gbuffer_terms", 4096, "new");
+    let gb_f32_tinted = mpts("gbuffer_4096", "gbuffer_f32_tinted", 4096, "new");
+    let gb_rgba8_tinted = mpts("gbuffer_4096", "gbuffer_rgba8_tinted", 4096, "new");
     let gb_acc = gbuffer_accuracy(&p, &nn, &soa);
     let _ = writeln!(
         md,
@@ -941,6 +943,12 @@ fn main() {
          (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a 256-entry table), in place of \
          linear `f32` reflectances. The last pair writes the three terms apart (`SoaTerms`: nine \
          `f32` slices, 36 bytes a point against the total's 12).\n\n\
+         The group's light is grey, as LearnOpenGL's are (`Vec3::splat` colours). Where every \
+         light and the scene's ambient light are grey, the kernel keeps one light sum per term \
+         instead of one per channel (the same bits: every channel's sums are the same \
+         operations on the same values). Under a tinted light (diffuse colour × (1, 0.9, 0.8), \
+         the `_tinted` rows) the same calls shade {} M points/s into `f32` ({}× `batch_frac`) \
+         and {} into RGBA8 ({}×).\n\n\
          `259b7f8` is `batch_frac` as it was at that commit (`phong_4096`: the same scene, \
          shininess and number of points), from the baseline `b259` run just before this run: \
          the one-material speed the G-buffer target was set against. The targets table above \
@@ -948,11 +956,12 @@ fn main() {
          Why it is slower than one material: the gap is the number of instructions, not their \
          rate (callgrind per kernel instance, DESIGN.md). A per-point surface is ten more \
          vectors to load and sanitise per chunk; its `Auto` pow is the polynomial in every lane \
-         (a point's own exponent, whole or not); it keeps the three light sums apart per channel \
-         (nine accumulators, and their saturation and products at the end) instead of the one \
-         folded sum a single material allows; each 16-lane vector is two of AVX2's sixteen \
-         registers, so about a fifth of its instructions are moves to and from the stack \
-         (a seventh of `batch_frac`'s); and \
+         (a point's own exponent, whole or not); it keeps the three light sums apart (three \
+         accumulators here, where the light is grey, nine for coloured lights; then their \
+         saturation and products with the surface at the end) instead of the one folded sum a \
+         single material allows; each 16-lane vector is two of AVX2's sixteen \
+         registers, so about a fifth of its instructions were moves to and from the stack \
+         with nine accumulators (a seventh of `batch_frac`'s); and \
          the 8-bit encoding adds three table lookups a point at AVX2 and about 75 vector \
          operations a chunk at AVX-512 (section above). Eight lanes a step \
          at the AVX2 level, which halves the registers each vector takes, measured about a \
@@ -973,6 +982,10 @@ fn main() {
         fmt_opt(gb_terms, 0),
         fmt_opt(frac.zip(gb_terms).map(|(a, b)| b / a), 2),
         fmt_opt(mpts("phong_4096", "batch_frac", 4096, "b259"), 0),
+        fmt_opt(gb_f32_tinted, 0),
+        fmt_opt(frac.zip(gb_f32_tinted).map(|(a, b)| b / a), 2),
+        fmt_opt(gb_rgba8_tinted, 0),
+        fmt_opt(frac.zip(gb_rgba8_tinted).map(|(a, b)| b / a), 2),
         gb_acc.max_abs,
         gb_acc.mismatch
     );
