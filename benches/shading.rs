@@ -771,22 +771,36 @@ fn gbuffer_4096(c: &mut Criterion) {
     g.bench_function("batch_frac", |bch| {
         bch.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
     });
-    g.bench_function("gbuffer_f32", |bch| {
-        bch.iter(|| {
-            phong::shade_gbuffer(
-                black_box(&model),
-                &m20,
-                &scene,
-                black_box(&buffer),
-                SoaRgb::new(r, gr, b),
-            )
-        })
-    });
-    g.bench_function("gbuffer_rgba8", |bch| {
-        bch.iter(|| {
-            phong::shade_gbuffer_rgba8(black_box(&model), &m20, &scene, black_box(&buffer), frame)
-        })
-    });
+    // The scene's light is grey (LearnOpenGL's), which lets the kernel keep one sum per term;
+    // the same calls under a tinted light keep three (`_tinted`).
+    let tinted_lights = [PointLight::try_new(
+        LIGHT_POS,
+        Attenuation::try_polynomial(ATT.0, ATT.1, ATT.2).unwrap(),
+        LightColors::try_new(LA, LD * Vec3::new(1.0, 0.9, 0.8), LS).unwrap(),
+    )
+    .unwrap()];
+    let tinted = Scene {
+        lights: &tinted_lights,
+        ..scene
+    };
+    for (suffix, sc) in [("", &scene), ("_tinted", &tinted)] {
+        g.bench_function(format!("gbuffer_f32{suffix}"), |bch| {
+            bch.iter(|| {
+                phong::shade_gbuffer(
+                    black_box(&model),
+                    &m20,
+                    sc,
+                    black_box(&buffer),
+                    SoaRgb::new(r, gr, b),
+                )
+            })
+        });
+        g.bench_function(format!("gbuffer_rgba8{suffix}"), |bch| {
+            bch.iter(|| {
+                phong::shade_gbuffer_rgba8(black_box(&model), &m20, sc, black_box(&buffer), frame)
+            })
+        });
+    }
     g.bench_function("gbuffer_terms", |bch| {
         bch.iter(|| {
             let [ar, ag, ab, dr, dg, db, sr, sg, sb] = &mut terms[..] else {
@@ -808,34 +822,6 @@ fn gbuffer_4096(c: &mut Criterion) {
     g.bench_function("gbuffer_albedo8_rgba8", |bch| {
         bch.iter(|| {
             phong::shade_gbuffer_rgba8(black_box(&model), &m20, &scene, black_box(&buffer8), frame)
-        })
-    });
-    // The scene's light is grey (LearnOpenGL's), which lets the kernel keep one sum per term;
-    // the same calls under a tinted light keep three (`_tinted`).
-    let tinted_lights = [PointLight::try_new(
-        LIGHT_POS,
-        Attenuation::try_polynomial(ATT.0, ATT.1, ATT.2).unwrap(),
-        LightColors::try_new(LA, LD * Vec3::new(1.0, 0.9, 0.8), LS).unwrap(),
-    )
-    .unwrap()];
-    let tinted = Scene {
-        lights: &tinted_lights,
-        ..scene
-    };
-    g.bench_function("gbuffer_f32_tinted", |bch| {
-        bch.iter(|| {
-            phong::shade_gbuffer(
-                black_box(&model),
-                &m20,
-                &tinted,
-                black_box(&buffer),
-                SoaRgb::new(r, gr, b),
-            )
-        })
-    });
-    g.bench_function("gbuffer_rgba8_tinted", |bch| {
-        bch.iter(|| {
-            phong::shade_gbuffer_rgba8(black_box(&model), &m20, &tinted, black_box(&buffer), frame)
         })
     });
     g.finish();
