@@ -686,6 +686,41 @@ fn main() {
             }
         }
     }
+    // The same call measured twice in this run: `batch` / `batch_frac` of `{kind}_4096` and the
+    // best level's row of `levels_4096` run `shade_batch` at the same level on the same scene and
+    // points. Their disagreement is this run's noise, which every ratio above carries.
+    let best = Level::detect().name();
+    let mut spread: Vec<String> = Vec::new();
+    for kind in [Kind::Phong, Kind::Blinn] {
+        for (function, sh) in [("batch", 32.0f32), ("batch_frac", 20.5)] {
+            let group = format!("{}_4096", kind.name());
+            let a = mpts(&group, function, 4096, "new");
+            let b = mpts(
+                "levels_4096",
+                &format!("{}/{best}_{sh}", kind.name()),
+                4096,
+                "new",
+            );
+            if let (Some(a), Some(b)) = (a, b) {
+                spread.push(format!(
+                    "{} s = {sh}: {a:.0} and {b:.0} ({:+.0}%)",
+                    kind.name(),
+                    (b / a - 1.0) * 100.0
+                ));
+            }
+        }
+    }
+    if !spread.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n**This run's noise.** The same call, `shade_batch` at the `{best}` level on the same \
+             scene and points, is timed twice in this run: as `batch` / `batch_frac` of the \
+             `*_4096` groups and as the `{best}` rows of `levels_4096` (M points/s, the second's \
+             difference from the first): {}. A ratio above that is closer to its goal than these \
+             differences does not say which side of it the code is on.",
+            spread.join("; ")
+        );
+    }
     let _ = writeln!(
         md,
         "\n## Real-shaped groups (`cargo bench --bench renderers`; `raster_frame`: `cargo bench -p raster`)\n"
