@@ -14,8 +14,8 @@
 //!
 //! Two table lookups differ more than the rest: `gather` (the 8-bit encoder's bucket table) is
 //! `vpgatherdd` at AVX2 and AVX-512 and lane by lane elsewhere; `lookup16` (a table of sixteen)
-//! is `vpermps` at AVX-512 and lane by lane elsewhere, and `LOOKUP16_IN_REGISTERS` tells the
-//! kernel which it gets.
+//! is `vpermps` at AVX-512, two `vpermps` and a blend at AVX2, and lane by lane elsewhere, and
+//! `LOOKUP16_IN_REGISTERS` tells the kernel which it gets.
 //!
 //! A value of an implementing type is a *token*: it exists only where its instructions run (each
 //! level's constructor checks the CPU), so its methods may call the intrinsics. The kernel runs
@@ -99,6 +99,11 @@ pub(crate) trait Simd: Copy {
     fn sar23(self, a: Self::I) -> Self::I;
     /// Each lane converted to `f32` (exact below `2²⁴`).
     fn to_f32(self, a: Self::I) -> Self::V;
+    /// Each lane rounded to the nearest integer, ties to even, for `|v| < 2²²` (the levels
+    /// without a rounding instruction add and subtract `1.5·2²³`).
+    fn round(self, v: Self::V) -> Self::V;
+    /// Each lane converted to `i32`, truncated (exact for a whole number below `2³¹`).
+    fn to_i(self, v: Self::V) -> Self::I;
     /// `a >> 16`, logical.
     fn srl16(self, a: Self::I) -> Self::I;
     /// `a << 8`.
@@ -416,6 +421,14 @@ macro_rules! simd_by_parts {
             #[inline(always)]
             fn to_f32(self, a: Self::I) -> Self::V {
                 [$($native::to_f32(a[$j])),+]
+            }
+            #[inline(always)]
+            fn round(self, v: Self::V) -> Self::V {
+                [$($native::round(v[$j])),+]
+            }
+            #[inline(always)]
+            fn to_i(self, v: Self::V) -> Self::I {
+                [$($native::to_i(v[$j])),+]
             }
             #[inline(always)]
             fn srl16(self, a: Self::I) -> Self::I {

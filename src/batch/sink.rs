@@ -186,14 +186,7 @@ impl Sink for Pixels8<'_> {
 
     #[inline(always)]
     fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]) {
-        // Called one by one: a closure (`rows[0].map(..)`) would not inherit the kernel's target
-        // features, and its intrinsics would become calls.
-        let [r, g, b] = rows[0];
-        let (lr, lg, lb) = (
-            srgb8_lanes::levels(s, r),
-            srgb8_lanes::levels(s, g),
-            srgb8_lanes::levels(s, b),
-        );
+        let [lr, lg, lb] = srgb8_lanes::levels3(s, rows[0]);
         let (lo, hi, top) = match self {
             Pixels8::Rgba(_) => (lr, lb, 0xff00_0000),
             Pixels8::Xrgb(_) => (lb, lr, 0),

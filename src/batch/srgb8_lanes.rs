@@ -4,8 +4,7 @@
 //! Two ways, one result:
 //!
 //! - **The bucket table**, [`linear_to_srgb8`](crate::linear_to_srgb8)'s own, one entry per
-//!   lane, loaded by the level's gather instruction (AVX2) or lane by lane (SSE2, NEON,
-//!   portable):
+//!   lane, loaded lane by lane (SSE2, NEON, portable):
 //!
 //!   ```text
 //!   bits  = bits(min(max(x, LOWEST), 1))           NaN and everything below LOWEST: level 0
@@ -14,56 +13,77 @@
 //!   ```
 //!
 //! - **Arithmetic, checked against the rounding boundary** where the level keeps a table of
-//!   sixteen in a register ([`Simd::LOOKUP16_IN_REGISTERS`]: AVX-512). With `x = 2^e·m`,
-//!   `m ∈ [1, 2)`, the power segment `255·(1.055·x^(1/2.4) − 0.055)` is
-//!   `255·1.055·2^(5e/12) · m^(5/12) − 255·0.055`: the first factor from a table of the 14
-//!   binades in `[2⁻¹³, 1]`, the second a polynomial of degree 5 in `m` (Chebyshev
-//!   interpolation, relative error 1.9·10⁻⁶). That `w` is within [`ERROR`] of `255·srgb(x)`
-//!   (checked at every `f32` of the range). Rounded to the nearest integer, it is the level
-//!   unless `w` lies within [`MARGIN`] of a half-integer, the rounding boundary; then the exact
-//!   level may be either neighbour, and the vector's lanes take the table. Every other lane's
-//!   level is exact, because the true `255·srgb(x)` lies on the same side of the boundary.
+//!   sixteen in registers ([`Simd::LOOKUP16_IN_REGISTERS`]: AVX-512's `vpermps`, AVX2's two
+//!   `vpermps` and a blend). With `x = 2^e·m`, `m ∈ [1, 2)`, the power segment
+//!   `255·(1.055·x^(1/2.4) − 0.055)` is `255·1.055·2^(5e/12) · m^(5/12) − 255·0.055`: the first
+//!   factor from a table of the 14 binades in `[2⁻¹³, 1]`, indexed by the biased exponent
+//!   modulo 16, the second a polynomial of degree 5 in `m` (Chebyshev interpolation, relative
+//!   error 1.9·10⁻⁶, by Horner's rule). That `w` is within [`ERROR`] of `255·srgb(x)` (checked
+//!   at every `f32` of the range). Rounded to the nearest integer, it is the level unless `w`
+//!   lies within [`MARGIN`] of a half-integer, the rounding boundary; then the exact level may
+//!   be either neighbour, and the channel's lanes take the table (its gather instruction, one
+//!   per half at AVX2). Every other lane's level is exact, because the true `255·srgb(x)` lies
+//!   on the same side of the boundary.
 //!
-//!   About one vector in sixteen has such a lane (`2·MARGIN` per lane). On the development
-//!   machine (Zen 4) a 16-lane `vpgatherdd` per colour channel cost about 2 ns a point, and the
-//!   arithmetic about 1.3 (the G-buffer's RGBA8 row against its `f32` row: DESIGN.md, "What
-//!   did not work out"). At AVX2, where the permute takes four instructions per half, the
-//!   gather measured 5–8% faster, so AVX2 keeps it.
+//!   About one channel's vector in thirty has such a lane (`2·MARGIN` per lane); one branch
+//!   tests the three channels of a chunk. Per channel the arithmetic is 18 operations at
+//!   AVX-512: the clamp (2), `m` and the exponent (2), the polynomial (5), the binade's factor
+//!   and the linear segment (4), the rounding and the test (5). On the development machine
+//!   (Zen 4) this form took the G-buffer's RGBA8 row from 229 to 261 M points/s at AVX-512, and
+//!   at AVX2, where the gather had been 5–8% faster than an earlier arithmetic form, from 178
+//!   to 186 (DESIGN.md, "What did not work out"). The gather now runs for the few declined
+//!   channels only, which also spares the CPUs whose microcode slows it (Intel's mitigation of
+//!   Downfall).
 
-use super::kernel::poly;
 use super::simd::Simd;
 use crate::colour::srgb8::{BUCKET, LOWEST, SHIFT};
 
-/// Each lane's 8-bit sRGB level, `⌊255·srgb(x) + ½⌋` with the exact `srgb`, as an integer in
+/// Each channel's 8-bit sRGB levels, `⌊255·srgb(x) + ½⌋` with the exact `srgb`, as integers in
 /// `[0, 255]`: NaN and negatives give 0, values from 1 up give 255.
+///
+/// Where the level keeps a table of sixteen in a register, the three channels take the
+/// arithmetic, with one branch for all three on whether a lane of any channel lies too near a
+/// rounding boundary; only a channel with such a lane is redone by the table.
 #[inline(always)]
-pub(crate) fn levels<S: Simd>(s: S, x: S::V) -> S::I {
-    // `max` returns its second operand for NaN.
-    let x = s.min(s.max(x, s.splat(f32::from_bits(LOWEST))), s.splat(1.0));
-    if S::LOOKUP16_IN_REGISTERS
-        && let Some(level) = checked_levels(s, x)
-    {
-        return level;
+pub(crate) fn levels3<S: Simd>(s: S, [r, g, b]: [S::V; 3]) -> [S::I; 3] {
+    let (r, g, b) = (clamped(s, r), clamped(s, g), clamped(s, b));
+    if S::LOOKUP16_IN_REGISTERS {
+        let ((lr, nr), (lg, ng), (lb, nb)) = (
+            checked_levels(s, r),
+            checked_levels(s, g),
+            checked_levels(s, b),
+        );
+        let (near_r, near_g, near_b) = (s.bits(nr), s.bits(ng), s.bits(nb));
+        if near_r | near_g | near_b == 0 {
+            return [lr, lg, lb];
+        }
+        // Written out, not a closure: a closure would not inherit the level's target features.
+        return [
+            if near_r == 0 { lr } else { table_levels(s, r) },
+            if near_g == 0 { lg } else { table_levels(s, g) },
+            if near_b == 0 { lb } else { table_levels(s, b) },
+        ];
     }
-    table_levels(s, x)
+    [table_levels(s, r), table_levels(s, g), table_levels(s, b)]
 }
 
-/// The levels of `x ∈ [LOWEST, 1]` by the arithmetic, or `None` where a lane's `scaled` value
-/// lies within [`MARGIN`] of a rounding boundary (module docs).
+/// `min(max(x, LOWEST), 1)`: every lane in the tables' range, NaN at `LOWEST` (level 0).
 #[inline(always)]
-fn checked_levels<S: Simd>(s: S, x: S::V) -> Option<S::I> {
+fn clamped<S: Simd>(s: S, x: S::V) -> S::V {
+    // `max` returns its second operand for NaN.
+    s.min(s.max(x, s.splat(f32::from_bits(LOWEST))), s.splat(1.0))
+}
+
+/// The levels of `x ∈ [LOWEST, 1]` by the arithmetic, and the lanes where `scaled` lies within
+/// [`MARGIN`] of a rounding boundary, whose levels are not to be kept (module docs).
+#[inline(always)]
+fn checked_levels<S: Simd>(s: S, x: S::V) -> (S::I, S::M) {
     let w = scaled(s, x);
-    // The nearest integer by the `1.5·2²³` trick (`w ∈ [0, 256)`): ties go to even, but a tie
-    // is within the margin, so never kept.
-    let big = s.add(w, s.splat(12_582_912.0));
-    let d = s.sub(w, s.sub(big, s.splat(12_582_912.0)));
-    let far = s.max(d, s.sub(s.splat(0.0), d));
-    // Not `bool::then`: a closure would not inherit the level's target features.
-    if s.bits(s.gt(far, s.splat(0.5 - MARGIN))) == 0 {
-        Some(s.sub_i(s.to_bits(big), s.splat_i(0x4b40_0000)))
-    } else {
-        None
-    }
+    // `w ∈ [0, 256)`: the nearest integer is exact, and `w` minus it too (Sterbenz). Ties go to
+    // even, but a tie is within the margin, so never kept.
+    let nearest = s.round(w);
+    let off = s.bits_to_f32(s.and_i(s.to_bits(s.sub(w, nearest)), s.splat_i(0x7fff_ffff)));
+    (s.to_i(nearest), s.gt(off, s.splat(0.5 - MARGIN)))
 }
 
 /// `255·srgb(x)` for `x ∈ [LOWEST, 1]`, within [`ERROR`]: the linear segment `255·12.92·x` up
@@ -71,35 +91,40 @@ fn checked_levels<S: Simd>(s: S, x: S::V) -> Option<S::I> {
 #[inline(always)]
 fn scaled<S: Simd>(s: S, x: S::V) -> S::V {
     let bits = s.to_bits(x);
-    // `e + 13` for `x = 2^e·m`: 0 at LOWEST = 2⁻¹³, 13 at 1.
-    let binade = s.sub_i(s.sar23(bits), s.splat_i(127 - 13));
+    // The biased exponent: 114 at LOWEST = 2⁻¹³, 127 at 1; `lookup16` reads it modulo 16.
+    let exponent = s.sar23(bits);
     // `m` has `x`'s mantissa and the exponent of 1.
     let m = s.bits_to_f32(s.add_i(
         s.and_i(bits, s.splat_i(0x007f_ffff)),
         s.splat_i(0x3f80_0000),
     ));
-    let root = poly(s, s.sub(m, s.splat(1.5)), &ROOT);
-    let curve = s.mul_sub(s.lookup16(&SCALE, binade), root, s.splat(255.0 * 0.055));
+    // Horner's rule: five operations, where Estrin's scheme takes seven for a shorter chain;
+    // the chunk loop is bound by the operations' count, not their latency.
+    let mut root = s.splat(ROOT[5]);
+    for &c in ROOT[..5].iter().rev() {
+        root = s.mul_add(root, m, s.splat(c));
+    }
+    let curve = s.mul_sub(s.lookup16(&SCALE, exponent), root, s.splat(255.0 * 0.055));
     let line = s.mul(x, s.splat(255.0 * 12.92));
     s.select(s.le(x, s.splat(0.003_130_8)), line, curve)
 }
 
-/// `(t + 1.5)^(5/12)` for `t ∈ [−0.5, 0.5)`, coefficients of `t⁰ … t⁵`: Chebyshev interpolation of degree 5
+/// `m^(5/12)` for `m ∈ [1, 2)`, coefficients of `m⁰ … m⁵`: Chebyshev interpolation of degree 5
 /// (relative error 1.9·10⁻⁶).
 const ROOT: [f32; 6] = [
-    1.184_052_3,
-    0.328_904_45,
-    -0.063_861_06,
-    0.022_452_693,
-    -0.010_651_43,
+    0.378_249_17,
+    0.946_032_17,
+    -0.482_285_2,
+    0.202_089_76,
+    -0.049_227_59,
     0.005_143_488_3,
 ];
 
-/// `255·1.055·2^(5e/12)` for the binade `e = b − 13` at index `b ∈ [0, 13]`, rounded from the
-/// exact value.
+/// `255·1.055·2^(5e/12)` for the binade `x ∈ [2^e, 2^(e+1))`, `e ∈ [−13, 0]`, at the index of
+/// `x`'s biased exponent modulo 16 (`e + 127 − 112`: 2 to 15), rounded from the exact value.
 const SCALE: [f32; 16] = [
-    6.298_157, 8.407_031, 11.222_04, 14.979_627, 19.995_403, 26.690_66, 35.627_758, 47.557_35,
-    63.481_445, 84.737_564, 113.111_08, 150.985_18, 201.541_03, 269.025, 0.0, 0.0,
+    0.0, 0.0, 6.298_157, 8.407_031, 11.222_04, 14.979_627, 19.995_403, 26.690_66, 35.627_758,
+    47.557_35, 63.481_445, 84.737_564, 113.111_08, 150.985_18, 201.541_03, 269.025,
 ];
 
 /// A bound on `|scaled(x) − 255·srgb(x)|`, in levels, at every level's arithmetic (the largest
@@ -107,8 +132,10 @@ const SCALE: [f32; 16] = [
 /// measures it).
 pub(crate) const ERROR: f32 = 1e-3;
 
-/// How close to a half-integer `scaled` may land and still be rounded: twice [`ERROR`].
-pub(crate) const MARGIN: f32 = 2.0 * ERROR;
+/// How close to a half-integer `scaled` may land and still be rounded: [`ERROR`]. A kept lane's
+/// `scaled` lies more than `ERROR` from the boundary, so the exact value, within `ERROR` of it,
+/// lies on the same side (no exact value lies on a boundary: `THRESHOLDS` in `srgb8.rs`).
+pub(crate) const MARGIN: f32 = ERROR;
 
 /// The bucket table's level per lane (module docs).
 #[inline(always)]
@@ -166,17 +193,28 @@ mod tests {
         for chunk in xs.chunks(W) {
             let mut lanes: Lanes = [0.0; W];
             lanes[..chunk.len()].copy_from_slice(chunk);
-            let level = levels(s, s.load(&lanes));
-            let words = s.store(s.bits_to_f32(pack(s, level, s.splat_i(7), level, 0xff00_0000)));
-            let level = s.store(s.bits_to_f32(level));
-            for (j, &x) in chunk.iter().enumerate() {
-                let want = crate::colour::srgb8::level(x);
-                assert_eq!(level[j].to_bits(), u32::from(want), "{name}: x = {x:e}");
-                assert_eq!(
-                    words[j].to_bits().to_le_bytes(),
-                    [want, 7, want, 255],
-                    "{name}"
-                );
+            // The chunk as red, and as blue with its lanes rotated by one; green the linear
+            // values of the levels 0, 16, …, 240, whose arithmetic is never near a boundary, so a
+            // channel redone by the table sits beside one kept from the arithmetic.
+            let mut rotated = lanes;
+            rotated.rotate_left(1);
+            let mut far: Lanes = [0.0; W];
+            for (j, f) in far.iter_mut().enumerate() {
+                *f = crate::srgb_decode(16.0 * j as f32 / 255.0);
+            }
+            let [r, g, b] = levels3(s, [s.load(&lanes), s.load(&far), s.load(&rotated)]);
+            let words = s.store(s.bits_to_f32(pack(s, r, g, b, 0xff00_0000)));
+            let want = |x: f32| crate::colour::srgb8::level(x);
+            for (k, (got, from)) in [(r, lanes), (g, far), (b, rotated)].into_iter().enumerate() {
+                let got = s.store(s.bits_to_f32(got));
+                for j in 0..W {
+                    let x = from[j];
+                    assert_eq!(got[j].to_bits(), u32::from(want(x)), "{name}: x = {x:e}");
+                    assert_eq!(words[j].to_bits().to_le_bytes()[k], want(x), "{name}");
+                }
+            }
+            for word in words {
+                assert_eq!(word.to_bits() >> 24, 255, "{name}");
             }
         }
     }
@@ -204,14 +242,14 @@ mod tests {
         for chunk in xs.chunks(W) {
             let mut lanes: Lanes = [1.0; W];
             lanes[..chunk.len()].copy_from_slice(chunk);
-            let Some(level) = checked_levels(s, s.load(&lanes)) else {
-                declined += 1;
-                continue;
-            };
-            let level = s.store(s.bits_to_f32(level));
+            let (level, near) = checked_levels(s, s.load(&lanes));
+            let (level, near) = (s.store(s.bits_to_f32(level)), s.bits(near));
+            declined += usize::from(near != 0);
             for (j, &x) in chunk.iter().enumerate() {
-                let want = crate::colour::srgb8::level(x);
-                assert_eq!(level[j].to_bits(), u32::from(want), "{name}: x = {x:e}");
+                if near & (1 << j) == 0 {
+                    let want = crate::colour::srgb8::level(x);
+                    assert_eq!(level[j].to_bits(), u32::from(want), "{name}: x = {x:e}");
+                }
             }
         }
         declined
@@ -258,8 +296,8 @@ mod tests {
     }
 
     /// The arithmetic's levels, where it keeps them, are the table's, at every level (not
-    /// only where `levels` uses it); on colours uniform in `[0, 1]` it declines about one chunk
-    /// in sixteen (`1 − (1 − 2·MARGIN)^16` = 6.2%), and the bound allows twice that.
+    /// only where `levels3` uses it); on colours uniform in `[0, 1]` it declines about one chunk
+    /// in thirty (`1 − (1 − 2·MARGIN)^16` = 3.2%), and the bound allows twice that.
     #[test]
     fn checked_levels_are_exact_and_rarely_declined() {
         let mut rng = 0x9e37_79b9_7f4a_7c15u64;
@@ -275,7 +313,7 @@ mod tests {
         for (name, declined) in at_every_level!(checked_agrees, &uniform) {
             let rate = declined as f64 / chunks as f64;
             assert!(
-                rate < 0.124,
+                rate < 0.064,
                 "{name}: {declined} of {chunks} chunks declined"
             );
         }

@@ -6,12 +6,14 @@
 )]
 
 use core::arch::x86_64::{
-    __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
-    _mm256_and_si256, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_cmpgt_epi32, _mm256_cvtepi32_ps,
-    _mm256_div_ps, _mm256_fmadd_ps, _mm256_fmsub_ps, _mm256_fnmadd_ps, _mm256_i32gather_epi32,
-    _mm256_max_ps, _mm256_min_epu32, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
-    _mm256_rsqrt_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32, _mm256_srai_epi32,
-    _mm256_srli_epi32, _mm256_sub_epi32, _mm256_sub_ps,
+    __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _MM_FROUND_NO_EXC, _MM_FROUND_TO_NEAREST_INT,
+    _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps, _mm256_and_si256, _mm256_blendv_ps,
+    _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cmpgt_epi32, _mm256_cvtepi32_ps,
+    _mm256_cvttps_epi32, _mm256_div_ps, _mm256_fmadd_ps, _mm256_fmsub_ps, _mm256_fnmadd_ps,
+    _mm256_i32gather_epi32, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_epu32, _mm256_min_ps,
+    _mm256_movemask_ps, _mm256_mul_ps, _mm256_permutevar8x32_ps, _mm256_round_ps, _mm256_rsqrt_ps,
+    _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32, _mm256_srai_epi32, _mm256_srli_epi32,
+    _mm256_sub_epi32, _mm256_sub_ps,
 };
 
 use crate::batch::Level;
@@ -36,7 +38,7 @@ simd_by_parts!(
     __m256,
     native,
     gather = native,
-    lookup16 = default
+    lookup16 = native
 );
 
 level_entry!(Avx2, features = "avx2,fma");
@@ -142,6 +144,14 @@ mod native {
         unsafe { _mm256_cvtepi32_ps(a) }
     }
     #[inline(always)]
+    pub(super) fn round(v: __m256) -> __m256 {
+        unsafe { _mm256_round_ps::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(v) }
+    }
+    #[inline(always)]
+    pub(super) fn to_i(v: __m256) -> __m256i {
+        unsafe { _mm256_cvttps_epi32(v) }
+    }
+    #[inline(always)]
     pub(super) fn srl16(a: __m256i) -> __m256i {
         unsafe { _mm256_srli_epi32::<16>(a) }
     }
@@ -160,6 +170,18 @@ mod native {
     #[inline(always)]
     pub(super) fn gt_i(a: __m256i, b: __m256i) -> __m256i {
         unsafe { _mm256_cmpgt_epi32(a, b) }
+    }
+    /// Two `vpermps`, one per half of the table, and a blend on the index's bit 3 (moved to the
+    /// sign bit): the index's low four bits.
+    #[inline(always)]
+    pub(super) fn lookup16(table: &[f32; 16], idx: __m256i) -> __m256 {
+        let (lo, hi) = table.split_at(8);
+        // SAFETY: as the module's; each load reads eight entries of `table`.
+        unsafe {
+            let lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(lo.as_ptr()), idx);
+            let hi = _mm256_permutevar8x32_ps(_mm256_loadu_ps(hi.as_ptr()), idx);
+            _mm256_blendv_ps(lo, hi, _mm256_castsi256_ps(_mm256_slli_epi32::<28>(idx)))
+        }
     }
     /// `vpgatherdd`, each index first clamped to the table's last (unsigned `min`), so every
     /// lane reads inside `table`.

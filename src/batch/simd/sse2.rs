@@ -10,9 +10,9 @@
 
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
-    _mm_cmpgt_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_div_ps, _mm_max_ps,
-    _mm_min_ps, _mm_movemask_ps, _mm_mul_ps, _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32, _mm_set1_ps,
-    _mm_slli_epi32, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32, _mm_sub_ps,
+    _mm_cmpgt_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_cvttps_epi32, _mm_div_ps,
+    _mm_max_ps, _mm_min_ps, _mm_movemask_ps, _mm_mul_ps, _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32,
+    _mm_set1_ps, _mm_slli_epi32, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32, _mm_sub_ps,
 };
 
 /// The `Sse2` level's token (every x86_64 CPU runs it).
@@ -129,6 +129,18 @@ mod native {
     #[inline(always)]
     pub(super) fn to_f32(a: __m128i) -> __m128 {
         unsafe { _mm_cvtepi32_ps(a) }
+    }
+    /// SSE2 has no rounding instruction: `(v + 1.5·2²³) − 1.5·2²³`, exact for `|v| < 2²²`.
+    #[inline(always)]
+    pub(super) fn round(v: __m128) -> __m128 {
+        unsafe {
+            let big = _mm_set1_ps(12_582_912.0);
+            _mm_sub_ps(_mm_add_ps(v, big), big)
+        }
+    }
+    #[inline(always)]
+    pub(super) fn to_i(v: __m128) -> __m128i {
+        unsafe { _mm_cvttps_epi32(v) }
     }
     #[inline(always)]
     pub(super) fn srl16(a: __m128i) -> __m128i {
