@@ -301,14 +301,14 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
 /// `[r, g, b] = linear_to_srgb8(shade(…, p[i], n[i]).total())`.
 ///
 /// The same kernel as [`shade_batch`] encodes each colour in its vector lanes before writing it,
-/// with [`linear_to_srgb8`](crate::linear_to_srgb8)'s levels. At most levels by that function's
-/// own table: per channel, one 32-bit entry for the value's bucket of `f32`s (its exponent and
-/// top seven mantissa bits) holds the bucket's first level and where the one level boundary it
-/// may hold lies, loaded by a gather instruction at AVX2 and lane by lane at SSE2, NEON and
-/// portable, then one comparison. At AVX-512 the lanes compute `255·srgb(x)` to within `1e-3`
-/// levels and round it, and take the table only where a lane lies within `2e-3` of a rounding
-/// boundary. So every pixel is exactly [`linear_to_srgb8`](crate::linear_to_srgb8) of the `f32`
-/// colour, at every level. No buffer, no allocation. Alpha is 255.
+/// with [`linear_to_srgb8`](crate::linear_to_srgb8)'s levels. At AVX-512 and AVX2 the lanes
+/// compute `255·srgb(x)` to within `1e-3` levels and round it. Where a lane lies within `1e-3`
+/// of a rounding boundary, its channel takes that function's own table instead (as SSE2, NEON
+/// and portable always do): per channel, one 32-bit entry for the value's bucket of `f32`s (its
+/// exponent and top seven mantissa bits) holds the bucket's first level and where the one level
+/// boundary it may hold lies, then one comparison. So every pixel is exactly
+/// [`linear_to_srgb8`](crate::linear_to_srgb8) of the `f32` colour, at every level. No buffer,
+/// no allocation. Alpha is 255.
 ///
 /// **Domain:** as [`shade_batch`]. **Returns** the number of points shaded: the shortest of the
 /// six input slices and `out` (debug builds assert they are equal); entries past it are untouched.

@@ -876,12 +876,13 @@ fn main() {
          benches' Phong scene at s = 32, best level, million points per second:\n\n\
          | `shade_batch` (`f32`) | `shade_batch_rgba8` | ratio |\n|---:|---:|---:|\n| {} | {} | {} |\n\n\
          The pixels are `linear_to_srgb8`'s, bit for bit, at every level \
-         (src/batch/srgb8_lanes.rs and its tests). At AVX2 each lane's table entry is loaded by \
-         `vpgatherdd`, and lane by lane at SSE2, NEON and portable. At AVX-512 the lanes compute \
-         `255·srgb(x)` to within 1e-3 levels (a table of the binades held in one register, and a \
-         polynomial of degree 5) and round it; a vector with a lane within 2e-3 of a rounding \
-         boundary takes the table instead (about one in sixteen). On this host the 16-lane \
-         gathers were nearly the whole cost of 8-bit output; DESIGN.md has the measurements. \
+         (src/batch/srgb8_lanes.rs and its tests). At AVX-512 and AVX2 the lanes compute \
+         `255·srgb(x)` to within 1e-3 levels (a table of the binades held in registers, and a \
+         polynomial of degree 5: 18 vector operations a channel) and round it; a channel whose \
+         vector has a lane within 1e-3 of a rounding boundary takes the table instead (about \
+         one in thirty), loaded by `vpgatherdd`. SSE2, NEON and portable load each lane's table \
+         entry one by one. On this host the 16-lane gathers were nearly the whole cost of 8-bit \
+         output; DESIGN.md has the measurements. \
          At every level the kernel writes a chunk's pixels after shading the next chunk, so \
          the encoding's chain of dependent operations runs beside that shading. Per level, \
          million points per second:\n",
