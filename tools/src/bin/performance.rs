@@ -1093,10 +1093,10 @@ fn main() {
          `aarch64-unknown-linux-gnu` and runs it under qemu, so the batch-vs-scalar comparisons \
          run there at the `Portable` and `Neon` levels (with the earlier NEON loops, one Newton \
          step instead of two failed 8 of the 17 batch tests). Nothing here measures aarch64 speed: \
-         qemu's timings say nothing about a real core, and the qemu here has no plugin support \
-         for counting executed instructions. (Static counts of the earlier, auto-vectorised \
-         kernel were recorded before it was replaced by the one source; they have not been \
-         redone for this kernel.)\n"
+         qemu's timings say nothing about a real core. What qemu can count is executed \
+         instructions: docs/instruction-counts.md gives them per point for each batch form at \
+         the `Neon` and `Portable` levels, beside x86_64's portable, SSE2 and AVX2 counted by \
+         valgrind (`bash tools/count_instructions.sh` writes it).\n"
     );
 
     // ---- Strategies.
