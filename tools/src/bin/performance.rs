@@ -1096,7 +1096,7 @@ fn main() {
          qemu's timings say nothing about a real core. What qemu can count is executed \
          instructions: docs/instruction-counts.md gives them per point for each batch form at \
          the `Neon` and `Portable` levels, beside x86_64's portable, SSE2 and AVX2 counted by \
-         valgrind (`bash tools/count_instructions.sh` writes it).\n"
+         valgrind (`bash scripts/count-instructions.sh` writes it).\n"
     );
 
     // ---- Strategies.

@@ -1,6 +1,6 @@
 //! Shades the benches' 4096 points a given number of times through one batch entry point at one
 //! dispatch level, for counting executed instructions with an emulator or valgrind, where
-//! timings mean nothing (`tools/count_instructions.sh` runs it).
+//! timings mean nothing (`scripts/count-instructions.sh` runs it).
 //!
 //! ```text
 //! shade_loop <form> <level> <calls>

@@ -10,7 +10,7 @@
 # (gcc-aarch64-linux-gnu, libc6-dev-arm64-cross, qemu-user-static) and
 # `rustup target add aarch64-unknown-linux-gnu`.
 #
-# Run from the repository root: bash tools/count_instructions.sh (writes
+# Run from the repository root: bash scripts/count-instructions.sh (writes
 # docs/instruction-counts.md).
 set -euo pipefail
 
@@ -80,14 +80,15 @@ table=$(
 )
 
 host=$(lscpu | awk -F: '/Model name/ { sub(/^ +/, "", $2); print $2; exit }')
-commit=$(git rev-parse --short HEAD)
-git diff --quiet HEAD -- src tools || commit="$commit, with uncommitted changes"
+# The last commit that changed the crate's code, which is what the counts measure.
+commit=$(git log -1 --format=%h -- src)
+git diff --quiet HEAD -- src || commit="$commit, with uncommitted changes to src/"
 
 cat > docs/instruction-counts.md <<EOF
 # Executed instructions per point
 
-Written by \`bash tools/count_instructions.sh\` on $(date -u +%Y-%m-%d) ($commit), on
-$host.
+Written by \`bash scripts/count-instructions.sh\` on $(date -u +%Y-%m-%d), on $host, for the
+crate's code of commit $commit.
 
 Instructions executed per point by the batch entry points at each dispatch level this host or
 qemu runs: x86_64's counted by valgrind's callgrind (which does not run AVX-512), aarch64's
