@@ -32,9 +32,10 @@
 //!   [`Attenuation::Polynomial`](crate::Attenuation::Polynomial) take the fastest path, with the
 //!   approximate inverse norms below. A [`SpotLight`](crate::SpotLight), or a point light with
 //!   another falloff (inverse-square, Unreal, Frostbite), gets its direction and distance per lane
-//!   by an exact square root and division and its factor by the scalar path's own formula (the
-//!   spot cone's `powf` lane by lane), so its factor is [`shade`](crate::shade)'s, bit for bit; a
-//!   call with one runs the portable kernel at every level (at `Avx512`, compiled for AVX-512);
+//!   by an exact square root and division and its factor by the scalar path's own formula, in the
+//!   level's vector instructions (only a spot exponent other than 0 or 1 takes `powf`, lane by
+//!   lane, for the lanes inside the cone), so its factor is [`shade`](crate::shade)'s, bit for
+//!   bit;
 //! - both [`Viewer`](crate::Viewer)s.
 //!
 //! ## Saturation
@@ -187,6 +188,7 @@
 mod aos;
 mod batch_shader;
 mod dispatch;
+mod falloff_lanes;
 mod gbuffer;
 mod kernel;
 mod level;

@@ -14,7 +14,8 @@
 //! ```
 //!
 //! Spot lights and the other falloffs take their direction, distance and factor per lane by the
-//! scalar path's own operations ([`falloff`]), so their factor is `shade`'s bit for bit.
+//! scalar path's own operations ([`falloff`], vector arithmetic but for a spot exponent's `powf`),
+//! so their factor is `shade`'s bit for bit.
 //!
 //! The colours follow the saturation rule in the module docs of `batch`: per channel three sums
 //! over the lights, `Ia + Σ f·La`, `Σ f·max(N·L, 0)·Ld` and `Σ min(f·w, MAX)·Ls` (`w` the gated,
@@ -27,13 +28,13 @@
 
 use glam::Vec3;
 
+use super::falloff_lanes::falloff;
 use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
 use super::simd::{Kernels, Simd};
 use super::sink::Sink;
 use super::soa::{SoaRgb, SoaVec3};
 use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
-use crate::light::SpotLight;
 use crate::material::Material;
 use crate::math;
 use crate::pow::{EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, lobe_pow};
@@ -853,36 +854,6 @@ fn offset_to<S: Simd>(s: S, q: Vec3, p: &[S::V; 3], ok: &mut S::M) -> ([S::V; 3]
 /// level at high shininess. For random directions about 0.25% of lanes are affected.
 pub(super) const BLINN_DEN_MIN: f32 = 1e-2;
 
-/// A falloff light's unit direction and factor per lane, by `LightSource::sample`'s own
-/// operations: the direction and distance of `direction_and_distance` (an exact square root, then
-/// `v · (1/d)`), the factor of `Attenuation::factor` (as `FlatAttenuation`) times the spot factor.
-///
-/// Scalar code, out of line: inlined, its loop and its formulas' branches would keep the kernel's
-/// vectors in memory for every light, spot and falloff or not.
-#[inline(never)]
-fn falloff(d: &[Lanes; 3], flat: FlatAttenuation, spot: Option<SpotLight>) -> ([Lanes; 3], Lanes) {
-    let [dx, dy, dz] = d;
-    let (mut lx, mut ly, mut lz, mut att) = ([0.0f32; W], [0.0f32; W], [0.0f32; W], [0.0f32; W]);
-    for i in 0..W {
-        // `length_squared`'s own sum (unfused, left to right), so the direction and distance are
-        // the scalar path's bit for bit: a spot exponent multiplies any difference in them.
-        let dist = math::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-        let inv = 1.0 / dist;
-        (lx[i], ly[i], lz[i]) = (dx[i] * inv, dy[i] * inv, dz[i] * inv);
-        // A lane out of range (flagged for the scalar path, its value discarded) can reach +∞
-        // or NaN here: clamped into the factor's domain.
-        let f = flat.factor(math::clamp_or_lo(dist, 0.0, math::MAX));
-        att[i] = match spot {
-            Some(spot) => {
-                let c = spot.spot_factor(Vec3::new(lx[i], ly[i], lz[i]));
-                if c > 0.0 { (f * c).min(math::MAX) } else { 0.0 }
-            }
-            None => f,
-        };
-    }
-    ([lx, ly, lz], att)
-}
-
 /// A prepared light with its constants in every lane, built once per call, so the loop reads
 /// them as memory operands instead of broadcasting scalars for every chunk.
 #[derive(Clone, Copy)]
@@ -1072,9 +1043,7 @@ where
             }
             LaneLight::Falloff { position, spot, .. } => {
                 let (d, _) = offset_to(s, position, p, &mut ok);
-                let d = [s.store(d[0]), s.store(d[1]), s.store(d[2])];
-                let (l, att) = falloff(&d, light.flat, spot);
-                let (l, att) = ([s.load(&l[0]), s.load(&l[1]), s.load(&l[2])], s.load(&att));
+                let (l, att) = falloff(s, &d, &light.flat, spot.as_ref());
                 (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
             }
         };
@@ -1481,7 +1450,7 @@ where
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::batch::simd::portable::Portable;
     use crate::pow::PowStrategy;
@@ -1630,6 +1599,7 @@ mod tests {
             $check(crate::batch::simd::neon::Neon, "neon");
         }};
     }
+    pub(in crate::batch) use at_every_level;
 
     #[test]
     fn squaring_is_the_scalar_ladder_at_every_level() {

@@ -105,8 +105,9 @@ pub trait BatchModel: ReflectionModel + Copy + Into<Model> + sealed::Sealed {
 /// [`DirectionalLight`] and [`PointLight`] with [`Attenuation::None`] or
 /// [`Attenuation::Polynomial`] run on the kernel's fastest path, in vector arithmetic. A
 /// [`SpotLight`], or a point light with another falloff, gets its direction and distance per lane
-/// by an exact square root and division and its factor by the scalar path's own formula (the spot
-/// factor's `powf` lane by lane), at every level.
+/// by an exact square root and division and its factor by the scalar path's own formula, in
+/// vector arithmetic at every level (a spot exponent other than 0 or 1 takes `powf` lane by lane,
+/// for the lanes inside the cone).
 pub trait BatchLight: LightSource + sealed::Sealed {
     /// The light's kernel form, or `None` when the kernel does not handle it.
     #[doc(hidden)]

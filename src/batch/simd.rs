@@ -65,6 +65,8 @@ pub(crate) trait Simd: Copy {
     /// `1/√x` for `x` in `[1e-30, 1e30]`, to a relative error of a few `2⁻²⁴` (the level's estimate
     /// and Newton steps, or the exact quotient).
     fn rsqrt(self, x: Self::V) -> Self::V;
+    /// `√x`, correctly rounded (IEEE 754's square root, as `f32::sqrt`).
+    fn sqrt(self, x: Self::V) -> Self::V;
 
     /// `a < b` per lane.
     fn lt(self, a: Self::V, b: Self::V) -> Self::M;
@@ -356,6 +358,10 @@ macro_rules! simd_by_parts {
             #[inline(always)]
             fn rsqrt(self, x: Self::V) -> Self::V {
                 [$($native::rsqrt(x[$j])),+]
+            }
+            #[inline(always)]
+            fn sqrt(self, x: Self::V) -> Self::V {
+                [$($native::sqrt(x[$j])),+]
             }
             #[inline(always)]
             fn lt(self, a: Self::V, b: Self::V) -> Self::M {

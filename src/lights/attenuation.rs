@@ -95,6 +95,86 @@ fn window(d: f32, r: f32) -> f32 {
     }
 }
 
+/// [`window`]'s operations in any [`FactorArith`], every one computed and the result selected
+/// where `d < r` (the batch kernel's falloff test checks the two against each other bit for bit;
+/// `window` keeps its branch, which the scalar paths were tuned with).
+#[inline(always)]
+fn window_in<A: FactorArith>(a: A, d: A::V, r: A::V) -> A::V {
+    let one = a.splat(1.0);
+    let x = a.div(d, r); // in [0, 1) where kept: finite because r > d ≥ 0
+    let w = a.mul(
+        a.mul(a.div(a.sub(r, d), r), a.add(one, x)),
+        a.add(one, a.mul(x, x)),
+    );
+    // NaN only for r = +∞ (∞/∞), whose limit is 1.
+    let w = a.min_or(w, one);
+    a.select_lt(d, r, a.mul(w, w), a.splat(0.0))
+}
+
+/// The arithmetic [`FlatAttenuation::factor_in`] is written in: `f32` for one value
+/// ([`OneValue`]), and the batch kernel's sixteen lanes, so that both evaluate the falloff by one
+/// source, operation for operation (each operation is IEEE-exact in both: no fused multiply-add).
+pub(crate) trait FactorArith: Copy {
+    /// One value, or one per lane.
+    type V: Copy;
+    /// `x` (in every lane).
+    fn splat(self, x: f32) -> Self::V;
+    /// `a + b`.
+    fn add(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a − b`.
+    fn sub(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a · b`, not fused with what follows.
+    fn mul(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `a / b`.
+    fn div(self, a: Self::V, b: Self::V) -> Self::V;
+    /// `x > lo ? x : lo` (`lo` for NaN), as [`math::max_or`].
+    fn max_or(self, x: Self::V, lo: Self::V) -> Self::V;
+    /// `x < hi ? x : hi` (`hi` for NaN), as [`math::min_or`].
+    fn min_or(self, x: Self::V, hi: Self::V) -> Self::V;
+    /// `a < b ? x : y`.
+    fn select_lt(self, a: Self::V, b: Self::V, x: Self::V, y: Self::V) -> Self::V;
+}
+
+/// [`FactorArith`] on one `f32`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct OneValue;
+
+impl FactorArith for OneValue {
+    type V = f32;
+    #[inline(always)]
+    fn splat(self, x: f32) -> f32 {
+        x
+    }
+    #[inline(always)]
+    fn add(self, a: f32, b: f32) -> f32 {
+        a + b
+    }
+    #[inline(always)]
+    fn sub(self, a: f32, b: f32) -> f32 {
+        a - b
+    }
+    #[inline(always)]
+    fn mul(self, a: f32, b: f32) -> f32 {
+        a * b
+    }
+    #[inline(always)]
+    fn div(self, a: f32, b: f32) -> f32 {
+        a / b
+    }
+    #[inline(always)]
+    fn max_or(self, x: f32, lo: f32) -> f32 {
+        math::max_or(x, lo)
+    }
+    #[inline(always)]
+    fn min_or(self, x: f32, hi: f32) -> f32 {
+        math::min_or(x, hi)
+    }
+    #[inline(always)]
+    fn select_lt(self, a: f32, b: f32, x: f32, y: f32) -> f32 {
+        if a < b { x } else { y }
+    }
+}
+
 /// `2⁻³²`, exact in `f32`: the scale of the distance and of `l` in [`overflowed_reciprocal`].
 const TWO_POW_M32: f32 = f32::from_bits((127 - 32) << 23);
 
@@ -152,7 +232,22 @@ impl OverflowScale {
 /// `19·2⁻²⁴` below the exact factor, plus `2⁻¹⁵⁰` where the factor is subnormal.
 #[inline(always)]
 fn overflowed_reciprocal(k: OverflowScale, quadratic: f32, ds: f32) -> f32 {
-    1.0 / ((k.c + ds * (k.l + quadratic * ds)) * RAISE)
+    overflowed_reciprocal_in(OneValue, k, quadratic, ds)
+}
+
+/// [`overflowed_reciprocal`] in any [`FactorArith`].
+#[inline(always)]
+fn overflowed_reciprocal_in<A: FactorArith>(
+    a: A,
+    k: OverflowScale,
+    quadratic: f32,
+    ds: A::V,
+) -> A::V {
+    let den = a.add(
+        a.splat(k.c),
+        a.mul(ds, a.add(a.splat(k.l), a.mul(a.splat(quadratic), ds))),
+    );
+    a.div(a.splat(1.0), a.mul(den, a.splat(RAISE)))
 }
 
 /// The polynomial factor where its `f32` denominator `c + d·(l + q·d)` overflowed (for a finite
@@ -230,31 +325,45 @@ impl FlatAttenuation {
             (0.0..=math::MAX).contains(&d),
             "a flat factor's distance must lie in [0, f32::MAX], got {d}"
         );
-        let dd = math::max_or(d, self.min_d);
-        let den = self.c + dd * (self.l + self.q * dd);
+        self.factor_in(OneValue, d)
+    }
+
+    /// [`factor`](Self::factor) in any [`FactorArith`]: the batch kernel evaluates it on sixteen
+    /// lanes, with the same operations in the same order, so its factors are the scalar path's,
+    /// bit for bit (tested at every level in the kernel's tests).
+    #[inline(always)]
+    pub(crate) fn factor_in<A: FactorArith>(&self, a: A, d: A::V) -> A::V {
+        let dd = a.max_or(d, a.splat(self.min_d));
+        let den = a.add(
+            a.splat(self.c),
+            a.mul(dd, a.add(a.splat(self.l), a.mul(a.splat(self.q), dd))),
+        );
         // `radius` is the same at every point: in a vectorised loop this stays a branch, and the
         // window runs only for the windowed forms.
         let w = if self.radius < f32::INFINITY {
-            window(d, self.radius)
+            window_in(a, d, a.splat(self.radius))
         } else {
-            1.0
+            a.splat(1.0)
         };
         // The inverse-square forms divide twice by `dd`, as `factor` does: `dd²` underflows for
         // `dd` below 1e-19 and overflows above 1.8e19, while `P/dd/dd` is still representable.
         // The second division is chosen on the form alone, outside the per-point choice below,
         // so that it too stays a branch.
-        let a = if self.twice {
+        let divisor = if self.twice {
             dd
         } else {
-            math::max_or(den, self.floor)
+            a.max_or(den, a.splat(self.floor))
         };
-        let q = self.power * w / a;
-        let q = if self.twice { q / dd } else { q };
+        let q = a.div(a.mul(a.splat(self.power), w), divisor);
+        let q = if self.twice { a.div(q, dd) } else { q };
         // As `polynomial_overflowed` (the polynomial forms: power 1, no window). A vectorised
         // loop computes both and selects; see `overflowed_reciprocal` for why that is cheap.
-        let wide = overflowed_reciprocal(self.scaled, self.q, dd * TWO_POW_M32) * TWO_POW_M64;
-        let f = if den > self.overflow_above { wide } else { q };
-        math::min_or(f, math::MAX)
+        let wide = a.mul(
+            overflowed_reciprocal_in(a, self.scaled, self.q, a.mul(dd, a.splat(TWO_POW_M32))),
+            a.splat(TWO_POW_M64),
+        );
+        let f = a.select_lt(a.splat(self.overflow_above), den, wide, q);
+        a.min_or(f, a.splat(math::MAX))
     }
 }
 

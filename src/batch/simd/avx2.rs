@@ -12,8 +12,8 @@ use core::arch::x86_64::{
     _mm256_cvttps_epi32, _mm256_div_ps, _mm256_fmadd_ps, _mm256_fmsub_ps, _mm256_fnmadd_ps,
     _mm256_i32gather_epi32, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_epu32, _mm256_min_ps,
     _mm256_movemask_ps, _mm256_mul_ps, _mm256_permutevar8x32_ps, _mm256_round_ps, _mm256_rsqrt_ps,
-    _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32, _mm256_srai_epi32, _mm256_srli_epi32,
-    _mm256_sub_epi32, _mm256_sub_ps,
+    _mm256_set1_epi32, _mm256_set1_ps, _mm256_slli_epi32, _mm256_sqrt_ps, _mm256_srai_epi32,
+    _mm256_srli_epi32, _mm256_sub_epi32, _mm256_sub_ps,
 };
 
 use crate::batch::Level;
@@ -68,6 +68,10 @@ mod native {
     #[inline(always)]
     pub(super) fn div(a: __m256, b: __m256) -> __m256 {
         unsafe { _mm256_div_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn sqrt(x: __m256) -> __m256 {
+        unsafe { _mm256_sqrt_ps(x) }
     }
     #[inline(always)]
     pub(super) fn mul_add(a: __m256, b: __m256, c: __m256) -> __m256 {

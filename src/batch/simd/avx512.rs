@@ -14,7 +14,7 @@ use core::arch::x86_64::{
     _mm512_loadu_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_epi32, _mm512_maskz_mov_ps,
     _mm512_max_ps, _mm512_min_epu32, _mm512_min_ps, _mm512_mul_ps, _mm512_permutexvar_ps,
     _mm512_roundscale_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32, _mm512_set1_ps, _mm512_slli_epi32,
-    _mm512_srai_epi32, _mm512_srli_epi32, _mm512_sub_epi32, _mm512_sub_ps,
+    _mm512_sqrt_ps, _mm512_srai_epi32, _mm512_srli_epi32, _mm512_sub_epi32, _mm512_sub_ps,
 };
 
 use crate::batch::Level;
@@ -70,6 +70,10 @@ mod native {
     #[inline(always)]
     pub(super) fn div(a: __m512, b: __m512) -> __m512 {
         unsafe { _mm512_div_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn sqrt(x: __m512) -> __m512 {
+        unsafe { _mm512_sqrt_ps(x) }
     }
     #[inline(always)]
     pub(super) fn mul_add(a: __m512, b: __m512, c: __m512) -> __m512 {

@@ -104,6 +104,10 @@ impl Simd for Portable {
         each!(|i| 1.0 / math::sqrt(x[i]))
     }
     #[inline(always)]
+    fn sqrt(self, x: Lanes) -> Lanes {
+        each!(|i| math::sqrt(x[i]))
+    }
+    #[inline(always)]
     fn lt(self, a: Lanes, b: Lanes) -> [u32; W] {
         each!(|i| mask(a[i] < b[i]))
     }

@@ -12,7 +12,8 @@ use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
     _mm_cmpgt_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_cvttps_epi32, _mm_div_ps,
     _mm_max_ps, _mm_min_ps, _mm_movemask_ps, _mm_mul_ps, _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32,
-    _mm_set1_ps, _mm_slli_epi32, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32, _mm_sub_ps,
+    _mm_set1_ps, _mm_slli_epi32, _mm_sqrt_ps, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32,
+    _mm_sub_ps,
 };
 
 /// The `Sse2` level's token (every x86_64 CPU runs it).
@@ -55,6 +56,10 @@ mod native {
     #[inline(always)]
     pub(super) fn div(a: __m128, b: __m128) -> __m128 {
         unsafe { _mm_div_ps(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn sqrt(x: __m128) -> __m128 {
+        unsafe { _mm_sqrt_ps(x) }
     }
     #[inline(always)]
     pub(super) fn mul_add(a: __m128, b: __m128, c: __m128) -> __m128 {
