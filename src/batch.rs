@@ -33,9 +33,9 @@
 //!   approximate inverse norms below. A [`SpotLight`](crate::SpotLight), or a point light with
 //!   another falloff (inverse-square, Unreal, Frostbite), gets its direction and distance per lane
 //!   by an exact square root and division and its factor by the scalar path's own formula, in the
-//!   level's vector instructions (only a spot exponent other than 0 or 1 takes `powf`, lane by
-//!   lane, for the lanes inside the cone), so its factor is [`shade`](crate::shade)'s, bit for
-//!   bit;
+//!   level's vector instructions, so its direction and falloff are [`shade`](crate::shade)'s, bit
+//!   for bit; a spot cone's power `c^e` is [`PowStrategy::Auto`](crate::PowStrategy::Auto)'s
+//!   for `e` (see "Accuracy"), where `shade` calls `powf`;
 //! - both [`Viewer`](crate::Viewer)s.
 //!
 //! ## Saturation
@@ -73,7 +73,12 @@
 //!   norms, relative error ≤ 3.5e-7 each, and the dot product's `3·2⁻²⁴`, about `1e-6`; the
 //!   margin covers the rounding of `2(N·L)(N·V) − L·V` and `2 + 2 L·V`, which perturb a cosine by
 //!   a few `2⁻²⁴`);
-//! - a point light's attenuation factor is within `2e-6` relative of the exact one;
+//! - a point light's attenuation factor is within `2e-6` relative of the exact one (the other
+//!   falloffs are `shade`'s own, which are within that too);
+//! - a spot light's cone factor `c^e` (`c` the cosine to its axis, the same bits as `shade`'s) is
+//!   `shade`'s for `e = 0` and `e = 1`, and otherwise within
+//!   [`PowStrategy::Auto`](crate::PowStrategy::Auto)'s `max_relative_error` for `e` relative to
+//!   `max(c^e, 2⁻²⁴)` (`3.3e-5` for a whole `e ≤ 1024`, `2.2e-5` otherwise), as a lobe is;
 //! - Blinn-Phong's `(N·H)²` is the cosine form `max(N·L + N·V, 0)² / (2 + 2 L·V)` of those
 //!   cosines within `3·2⁻²⁴` relative;
 //! - the lobe power is within the strategy's

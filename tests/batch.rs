@@ -70,7 +70,7 @@ fn run<M: BatchModel, L: BatchLight>(
 fn check<M, L>(what: &str, model: &M, m: &Material, scene: &Scene<'_, L>, b: &Batch)
 where
     M: BatchModel + Copy + Into<Model>,
-    L: BatchLight,
+    L: BatchLight + 'static,
 {
     let me: Model = (*model).into();
     let ranges: Vec<batch_range::Range> =

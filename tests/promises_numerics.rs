@@ -297,7 +297,7 @@ proptest! {
 }
 
 /// Shades `p`/`n` at every level and checks each lane against the documented range.
-fn assert_batch_in_range<L: LightSource + phong::BatchLight>(
+fn assert_batch_in_range<L: LightSource + phong::BatchLight + 'static>(
     model: Model,
     material: &Material,
     scene: &Scene<'_, L>,

@@ -13,9 +13,9 @@
 //! Blinn: (N·H)² = max(N·L + N·V, 0)² / (2 + 2 L·V)    (no halfway vector, no sqrt)
 //! ```
 //!
-//! Spot lights and the other falloffs take their direction, distance and factor per lane by the
-//! scalar path's own operations ([`falloff`], vector arithmetic but for a spot exponent's `powf`),
-//! so their factor is `shade`'s bit for bit.
+//! Spot lights and the other falloffs take their direction, distance and falloff per lane by the
+//! scalar path's own operations ([`falloff`]), so those are `shade`'s bit for bit; a spot cone's
+//! power is the kernel's own (`PowStrategy::Auto`'s plan for the exponent).
 //!
 //! The colours follow the saturation rule in the module docs of `batch`: per channel three sums
 //! over the lights, `Ia + Σ f·La`, `Σ f·max(N·L, 0)·Ld` and `Σ min(f·w, MAX)·Ls` (`w` the gated,
@@ -37,7 +37,9 @@ use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
 use crate::material::Material;
 use crate::math;
-use crate::pow::{EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, lobe_pow};
+use crate::pow::{
+    EXP2_3, EXP2_4, EXP2_5, LOG2_3, LOG2_5, LOG2_7, Poly, PowPlan, PowStrategy, lobe_pow,
+};
 use crate::reflection::normalization::Normalization;
 use crate::shade::{Scene, Viewer};
 use crate::shader::Shader;
@@ -83,6 +85,34 @@ pub(crate) struct PreparedLight {
     /// A [`LaneLight::Falloff`]'s attenuation as one formula (`Attenuation::factor`'s own
     /// operations, bit for bit); unused by the other kinds.
     pub(crate) flat: FlatAttenuation,
+    /// A spot light's power plan for its exponent; unused by the other kinds.
+    pub(crate) spot_pow: SpotPow,
+}
+
+/// How the kernel raises a spot light's cosine to its exponent `e`: [`PowStrategy::Auto`]'s plan
+/// for `e`, chosen once per call (squaring for a whole `e ≤ 1024`, the degree-7 polynomial
+/// otherwise), and the base below which the power is flushed to 0 (see [`flush_below`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SpotPow {
+    pub(crate) plan: PowPlan,
+    pub(crate) flush: f32,
+}
+
+impl SpotPow {
+    /// For lights without a cone (never read).
+    pub(crate) const NONE: SpotPow = SpotPow {
+        plan: PowPlan::Squaring { n: 0 },
+        flush: 0.0,
+    };
+
+    /// The plan for exponent `e` (finite and `≥ 0`, as a spot light's is).
+    pub(crate) fn new(e: f32) -> SpotPow {
+        let plan = PowStrategy::Auto.plan(e);
+        SpotPow {
+            plan,
+            flush: flush_below(plan),
+        }
+    }
 }
 
 /// Lights prepared once per call (more are prepared per chunk).
@@ -111,6 +141,12 @@ pub(crate) fn prepare_light<L: BatchLight>(
         flat: match lane {
             LaneLight::Falloff { attenuation, .. } => attenuation.flat(),
             _ => Attenuation::None.flat(),
+        },
+        spot_pow: match lane {
+            LaneLight::Falloff {
+                spot: Some(spot), ..
+            } => SpotPow::new(spot.exponent()),
+            _ => SpotPow::NONE,
         },
         la: colors.ambient(),
         ld,
@@ -349,6 +385,7 @@ impl<'a> Setup<'a> {
             kd: Vec3::ZERO,
             ks: Vec3::ZERO,
             flat: Attenuation::None.flat(),
+            spot_pow: SpotPow::NONE,
         }; PREPARED];
         for (slot, light) in prepared.iter_mut().zip(scene.lights) {
             *slot = prepare_light(light, material, &lm);
@@ -653,7 +690,7 @@ fn squaring<S: Simd>(s: S, x: S::V, flush: f32, n: u32) -> S::V {
 
 /// `x^s` for bases in `[0, 1]` by the call's plan (the same in every lane); 0 for `x ≤ 0`.
 #[inline(always)]
-fn pow<S: Simd, const CALLS: bool>(s: S, plan: PowPlan, flush: f32, x: S::V) -> S::V {
+pub(super) fn pow<S: Simd, const CALLS: bool>(s: S, plan: PowPlan, flush: f32, x: S::V) -> S::V {
     let r = match plan {
         // Never met: the chunk sends every lane to the scalar path for this plan without `CALLS`.
         PowPlan::Exact { .. } if !CALLS => s.splat(0.0),
@@ -1043,7 +1080,8 @@ where
             }
             LaneLight::Falloff { position, spot, .. } => {
                 let (d, _) = offset_to(s, position, p, &mut ok);
-                let (l, att) = falloff(s, &d, &light.flat, spot.as_ref());
+                let spot = spot.as_ref().map(|spot| (spot, light.spot_pow));
+                let (l, att) = falloff(s, &d, &light.flat, spot);
                 (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
             }
         };
@@ -1453,7 +1491,6 @@ where
 pub(super) mod tests {
     use super::*;
     use crate::batch::simd::portable::Portable;
-    use crate::pow::PowStrategy;
     use crate::pow::error_bounds::worst_over_domain;
 
     /// The kernel's `pow` at level `s` meets every strategy's bound: the kernels' pow differs

@@ -60,9 +60,9 @@ pub enum LaneLight {
         coefficients: [f32; 3],
     },
     /// A point light with any other falloff, or a spot light: its direction and distance by an
-    /// exact square root and division and its factor by `Attenuation::factor` and
-    /// `SpotLight::spot_factor`, per lane, so the kernel's factor is the scalar path's, bit for
-    /// bit.
+    /// exact square root and division and its falloff by `Attenuation::factor`'s operations, per
+    /// lane, so they are the scalar path's bit for bit; a spot cone's power by
+    /// `PowStrategy::Auto`'s plan for its exponent.
     Falloff {
         /// Light position.
         position: Vec3,
@@ -106,8 +106,8 @@ pub trait BatchModel: ReflectionModel + Copy + Into<Model> + sealed::Sealed {
 /// [`Attenuation::Polynomial`] run on the kernel's fastest path, in vector arithmetic. A
 /// [`SpotLight`], or a point light with another falloff, gets its direction and distance per lane
 /// by an exact square root and division and its factor by the scalar path's own formula, in
-/// vector arithmetic at every level (a spot exponent other than 0 or 1 takes `powf` lane by lane,
-/// for the lanes inside the cone).
+/// vector arithmetic at every level (a spot cone's power by `PowStrategy::Auto`'s plan for its
+/// exponent: the module docs' "Accuracy").
 pub trait BatchLight: LightSource + sealed::Sealed {
     /// The light's kernel form, or `None` when the kernel does not handle it.
     #[doc(hidden)]

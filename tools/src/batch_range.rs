@@ -4,10 +4,12 @@
 //! breaks the promise; so does a `shade` result (whose perturbations are smaller), except in the
 //! overflow regime, where only the batch's rule is checked.
 
+use core::any::Any;
+
 use glam::{DVec3, Vec3};
 use phong::{
-    LightSource, Material, Model, Normalization, PowStrategy, ResolvedModel, Scene, SpecularGate,
-    Viewer,
+    Light, LightSource, Material, Model, Normalization, PowStrategy, ResolvedModel, Scene,
+    SpecularGate, SpotLight, Viewer,
 };
 
 /// The most `f32` operations between a light's inputs and the output channel, each of which may
@@ -94,6 +96,33 @@ fn sub_saturating(a: Vec3, b: Vec3) -> Vec3 {
     (a - b).clamp(Vec3::splat(-f32::MAX), Vec3::splat(f32::MAX))
 }
 
+/// For a spot light whose exponent `e` is neither 0 nor 1, the range of its factor `f·c^e` (`f` the
+/// point light's factor, `c` the cosine to the axis) when the power is within
+/// `PowStrategy::Auto`'s bound for `e` (the batch kernel's spot power, module docs of
+/// `phong::batch`); `None` for every other light, whose factor is `shade`'s.
+fn spot_power_range<L: LightSource + 'static>(light: &L, p: Vec3, l: Vec3) -> Option<Iv> {
+    let any: &dyn Any = light;
+    let spot = match any.downcast_ref::<Light>() {
+        Some(Light::Spot(spot)) => spot,
+        Some(_) => return None,
+        None => any.downcast_ref::<SpotLight>()?,
+    };
+    let e = spot.exponent();
+    if spot.cos_cutoff() < 0.0 || e == 0.0 || e == 1.0 {
+        return None;
+    }
+    let c = -l.dot(spot.axis());
+    let exact = if c >= spot.cos_cutoff() && c > 0.0 {
+        f64::from(c.min(1.0)).powf(f64::from(e))
+    } else {
+        0.0
+    };
+    let f = f64::from(spot.point().sample(p).factor);
+    let eps = f64::from(PowStrategy::Auto.resolve(e).max_relative_error())
+        * exact.max(f64::from(PowStrategy::ERROR_FLOOR));
+    Some((f * (exact - eps).max(0.0), (f * (exact + eps)).min(MAX)))
+}
+
 /// The model's gate, normalisation, pow strategy, and whether its lobe is Blinn-Phong's (`None`
 /// for Lambert).
 fn parts(model: &Model) -> (SpecularGate, Normalization, Option<(PowStrategy, bool)>) {
@@ -108,7 +137,7 @@ fn parts(model: &Model) -> (SpecularGate, Normalization, Option<(PowStrategy, bo
 /// of `phong::batch`: every cosine within `ETA`, attenuation within `ATT_REL`, Blinn's base within
 /// `BLINN_REL`, the lobe power within the strategy's error, the saturation rule, and a rounding
 /// allowance of `(8 + 2·lights)·U` relative in each sum and in the total).
-pub fn range<L: LightSource>(
+pub fn range<L: LightSource + 'static>(
     model: &Model,
     material: &Material,
     scene: &Scene<'_, L>,
@@ -158,7 +187,8 @@ pub fn range<L: LightSource>(
             c.specular() * material.specular(),
         ];
         huge |= products.iter().any(|x| x.max_element() as f64 >= 0.5 * MAX);
-        let f = (f0 * (1.0 - ATT_REL), f0 * (1.0 + ATT_REL));
+        let (f_lo, f_hi) = spot_power_range(light, p, sample.direction).unwrap_or((f0, f0));
+        let f = (f_lo * (1.0 - ATT_REL), f_hi * (1.0 + ATT_REL));
         a[0] += f.0 * c.ambient().as_dvec3();
         a[1] += f.1 * c.ambient().as_dvec3();
         let (Some(n), Some(l)) = (n, unit(sample.direction)) else {
