@@ -443,8 +443,9 @@ fn every_light_kind_and_viewer() {
     };
     check("12 lights", &blinn, &m, &scene, &b);
     // Spot lights (no cone, a whole and a fractional exponent, exponent 0) and every other
-    // falloff, also under a spot's cone: all in the kernel now, each light's factor by the scalar
-    // formula, so the documented range holds as for the lights above.
+    // falloff, also under a spot's cone: all in the kernel, each light's falloff by the scalar
+    // formula's operations and a cone's power within its documented bound (which the range
+    // includes), so the documented range holds as for the lights above.
     let spot = |at: Vec3, axis: Vec3, cone: SpotCone, attenuation, rng: &mut Rng| -> Light {
         SpotLight::try_with_cone(at, axis, cone, attenuation, colors(rng))
             .unwrap()

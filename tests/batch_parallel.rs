@@ -88,7 +88,7 @@ fn scenes() -> Vec<(Model, Vec<Light>)> {
             .into(),
             vec![point.into()],
         ),
-        // A spot light sends the call to the scalar path: the same promise holds there.
+        // A spot light takes the kernel's falloff lanes: the same promise holds there.
         (Phong::default().into(), vec![point.into(), spot.into()]),
     ]
 }
