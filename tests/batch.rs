@@ -442,6 +442,30 @@ fn every_light_kind_and_viewer() {
         viewer: Viewer::At(Vec3::new(0.0, 0.0, 5.0)),
     };
     check("12 lights", &blinn, &m, &scene, &b);
+    // 70 lights: past the 8 prepared up front and the 56 after them that a call of more than one
+    // chunk prepares once (the rest per chunk), with a light whose denominator may overflow (the
+    // kernel's test for it travels with the prepared light).
+    let mut many = lights.clone();
+    many.push(
+        PointLight::try_new(
+            Vec3::new(1.0, -2.0, 0.5),
+            Attenuation::try_polynomial(1.0, 0.0, 1e9).unwrap(),
+            colors(&mut rng),
+        )
+        .unwrap()
+        .into(),
+    );
+    for k in 0..57 {
+        let at = Vec3::new((k % 8) as f32 - 4.0, (k / 8) as f32 - 3.0, 2.0);
+        many.push(point_light(&mut rng, at).into());
+    }
+    assert_eq!(many.len(), 70);
+    let scene = Scene {
+        lights: &many,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::At(Vec3::new(0.0, 0.0, 5.0)),
+    };
+    check("70 lights", &blinn, &m, &scene, &b);
     // Spot lights (no cone, a whole and a fractional exponent, exponent 0) and every other
     // falloff, also under a spot's cone: all in the kernel, each light's falloff by the scalar
     // formula's operations and a cone's power within its documented bound (which the range

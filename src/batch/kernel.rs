@@ -87,6 +87,9 @@ pub(crate) struct PreparedLight {
     pub(crate) flat: FlatAttenuation,
     /// A spot light's power plan for its exponent; unused by the other kinds.
     pub(crate) spot_pow: SpotPow,
+    /// Whether a point light's attenuation denominator may pass `f32::MAX` at a distance the
+    /// range tests let through (see [`may_overflow`]); false for the other kinds.
+    pub(crate) may_overflow: bool,
 }
 
 /// How the kernel raises a spot light's cosine to its exponent `e`: [`PowStrategy::Auto`]'s plan
@@ -141,6 +144,10 @@ pub(crate) fn prepare_light<L: BatchLight>(
         flat: match lane {
             LaneLight::Falloff { attenuation, .. } => attenuation.flat(),
             _ => Attenuation::None.flat(),
+        },
+        may_overflow: match lane {
+            LaneLight::Point { coefficients, .. } => may_overflow(coefficients),
+            _ => false,
         },
         spot_pow: match lane {
             LaneLight::Falloff {
@@ -386,6 +393,7 @@ impl<'a> Setup<'a> {
             ks: Vec3::ZERO,
             flat: Attenuation::None.flat(),
             spot_pow: SpotPow::NONE,
+            may_overflow: false,
         }; PREPARED];
         for (slot, light) in prepared.iter_mut().zip(scene.lights) {
             *slot = prepare_light(light, material, &lm);
@@ -904,37 +912,32 @@ pub(crate) struct LightLanes<S: Simd> {
     la: [S::V; 3],
     ld: [S::V; 3],
     ls: [S::V; 3],
-    /// Whether the attenuation's denominator may pass `f32::MAX` at a distance the range tests
-    /// let through (see [`LightLanes::may_overflow`]).
+    /// [`PreparedLight::may_overflow`].
     may_overflow: bool,
 }
 
-impl<S: Simd> LightLanes<S> {
-    /// Whether `c + l·d + q·d²` may reach `f32::MAX` for some `d ≤ 10¹⁵`: the lanes the kernel
-    /// keeps have `d² ≤ HI = 10³⁰`, so otherwise no lane needs the test. Bounded in `f64` with a
-    /// factor of two to spare for the lanes' rounding and their inverse square root's error.
-    fn may_overflow(coefficients: [f32; 3]) -> bool {
-        let [c, l, q] = coefficients.map(f64::from);
-        // √HI.
-        let d = 1e15;
-        // NaN coefficients never reach here (the light is validated); were one there, `!(<)`
-        // keeps the test.
-        !(c + l * d + q * d * d < f64::from(f32::MAX) / 2.0)
-    }
+/// Whether `c + l·d + q·d²` may reach `f32::MAX` for some `d ≤ 10¹⁵`: the lanes the kernel
+/// keeps have `d² ≤ HI = 10³⁰`, so otherwise no lane needs the test. Bounded in `f64` with a
+/// factor of two to spare for the lanes' rounding and their inverse square root's error.
+fn may_overflow(coefficients: [f32; 3]) -> bool {
+    let [c, l, q] = coefficients.map(f64::from);
+    // √HI.
+    let d = 1e15;
+    // NaN coefficients never reach here (the light is validated); were one there, `!(<)`
+    // keeps the test.
+    !(c + l * d + q * d * d < f64::from(f32::MAX) / 2.0)
+}
 
+impl<S: Simd> LightLanes<S> {
     #[inline(always)]
     fn new(s: S, light: PreparedLight, folded: bool) -> Self {
-        let (q, c, may_overflow) = match light.lane {
+        let (q, c) = match light.lane {
             LaneLight::Point {
                 position,
                 coefficients,
-            } => (
-                position,
-                Vec3::from_array(coefficients),
-                Self::may_overflow(coefficients),
-            ),
-            LaneLight::Directional(d) => (d, Vec3::ZERO, false),
-            LaneLight::AmbientOnly | LaneLight::Falloff { .. } => (Vec3::ZERO, Vec3::ZERO, false),
+            } => (position, Vec3::from_array(coefficients)),
+            LaneLight::Directional(d) => (d, Vec3::ZERO),
+            LaneLight::AmbientOnly | LaneLight::Falloff { .. } => (Vec3::ZERO, Vec3::ZERO),
         };
         let (la, ld, ls) = if folded {
             (light.ka, light.kd, light.ks)
@@ -948,10 +951,24 @@ impl<S: Simd> LightLanes<S> {
             la: splat3(s, la),
             ld: splat3(s, ld),
             ls: splat3(s, ls),
-            may_overflow,
+            may_overflow: light.may_overflow,
         }
     }
 }
+
+/// The scene's lights as the chunk loop reads them: the first [`PREPARED`] with their constants
+/// in every lane (built once per call), and, for a scene with more, the next ones prepared once
+/// per call ([`MORE`] at most; past those, each is prepared per chunk through [`Call::light`]).
+pub(crate) struct ChunkLights<'a, S: Simd> {
+    first: [LightLanes<S>; PREPARED],
+    more: &'a [PreparedLight],
+}
+
+/// How many lights past the first [`PREPARED`] a call prepares once, on the stack of the level's
+/// kernel (about 15 KiB), instead of once per chunk: a scene of 64 lights (per-tile culling's
+/// case) prepares each light once per call. Before, each was prepared per chunk, a trait-object
+/// call and an `f64` overflow test that took about a third of the every-light G-buffer bench.
+pub(crate) const MORE: usize = 56;
 
 /// Shades 16 points. Returns the colours and the lanes the scalar path must redo (bit `i` for
 /// lane `i`). `FOLDED` is [`Setup::folded`]: sum the products of light and material colours
@@ -972,7 +989,7 @@ fn chunk<S, const FOLDED: bool, const GREY: bool, const CALLS: bool>(
     s: S,
     k: &Setup<'_>,
     call: &dyn Call,
-    lights: &[LightLanes<S>; PREPARED],
+    lights: &ChunkLights<'_, S>,
     p: &[S::V; 3],
     n: &[S::V; 3],
     surface: Option<&SurfaceV<S>>,
@@ -1184,9 +1201,15 @@ where
         let owned;
         let lj: &LightLanes<S> = if !CALLS || k.all_prepared {
             // Without calls, every light is prepared (`Setup::calls_out`).
-            &lights[j % PREPARED]
+            &lights.first[j % PREPARED]
+        } else if j < PREPARED {
+            &lights.first[j]
         } else {
-            owned = LightLanes::new(s, call.light(k, j), FOLDED);
+            let light = match lights.more.get(j - PREPARED) {
+                Some(&light) => light,
+                None => call.light(k, j),
+            };
+            owned = LightLanes::new(s, light, FOLDED);
             &owned
         };
         add_light!(lj, j);
@@ -1319,7 +1342,7 @@ fn shade_chunk<
     terms: bool,
     k: &Setup<'_>,
     call: &dyn Call,
-    lights: &[LightLanes<S>; PREPARED],
+    lights: &ChunkLights<'_, S>,
     p: [Lanes; 3],
     n: [Lanes; 3],
     inputs: &PointInputs<'_>,
@@ -1404,10 +1427,25 @@ where
     let per_point = ((SURFACE || VISIBILITY) && has_inputs(inputs)).then_some(inputs);
     // The first lights' constants in every lane, once per call (a loop, not `array::from_fn`: a
     // closure may be left out of line, without the level's target features).
-    let mut lights = [LightLanes::new(s, k.prepared[0], FOLDED); PREPARED];
-    for (slot, light) in lights.iter_mut().zip(k.prepared).take(k.lights).skip(1) {
+    let mut first = [LightLanes::new(s, k.prepared[0], FOLDED); PREPARED];
+    for (slot, light) in first.iter_mut().zip(k.prepared).take(k.lights).skip(1) {
         *slot = LightLanes::new(s, light, FOLDED);
     }
+    // Lights past the first PREPARED, prepared once here (a loop, as above), where the call has
+    // more than one chunk: for one chunk (a row of a tile in `shade_gbuffer_tiled`) each light
+    // is prepared once either way, and filling the array would cost more than it saves.
+    let mut more_store;
+    let more: &[PreparedLight] = if CALLS && !k.all_prepared && len > W {
+        more_store = [k.prepared[0]; MORE];
+        let count = (k.lights - PREPARED).min(MORE);
+        for (j, slot) in more_store.iter_mut().enumerate().take(count) {
+            *slot = call.light(k, PREPARED + j);
+        }
+        &more_store[..count]
+    } else {
+        &[]
+    };
+    let lights = ChunkLights { first, more };
     // A sink that encodes its output (`Sink::DEFER`: 8-bit pixels) writes each chunk after the
     // next one is shaded: the encoding's chain of dependent operations then overlaps the next
     // chunk's shading instead of following its own chunk's (`shade_batch_rgba8` +24% at AVX-512,
@@ -1604,7 +1642,7 @@ pub(super) mod tests {
                 [0.0, 0.0, x / 1e30],
                 [x, x, x],
             ] {
-                if LightLanes::<Portable>::may_overflow(c) {
+                if may_overflow(c) {
                     continue;
                 }
                 skipped += 1;
@@ -1614,7 +1652,7 @@ pub(super) mod tests {
         }
         // The bound is not vacuous: most of these sets skip the test, the largest keep it.
         assert!(skipped > 200, "{skipped}");
-        assert!(LightLanes::<Portable>::may_overflow([0.0, 0.0, 1e9]));
+        assert!(may_overflow([0.0, 0.0, 1e9]));
     }
 
     /// Runs `$check(level, name)` at every level this CPU has.
