@@ -608,6 +608,7 @@ fn culled_and_not(
     frame: &Frame,
     threshold: f32,
     visibility: Option<&[f32]>,
+    albedo: Option<&[[u8; 4]]>,
 ) -> (Vec<Vec3>, Vec<Vec3>) {
     let scene = Scene {
         lights: &frame.lights,
@@ -622,6 +623,9 @@ fn culled_and_not(
     .with_coverage(&frame.coverage);
     if let Some(v) = visibility {
         g = g.with_visibility(v);
+    }
+    if let Some(a) = albedo {
+        g = g.with_albedo_srgb8(a);
     }
     let len = frame.coverage.len();
     let shade = |tiled: bool| {
@@ -685,7 +689,7 @@ fn tile_culling_stays_within_its_documented_bound() {
     let lights = frame.lights.len() as f32;
     for (model, dscale, sscale) in models {
         for level in Level::supported() {
-            let (full, culled) = culled_and_not(level, &model, &m, &frame, threshold, None);
+            let (full, culled) = culled_and_not(level, &model, &m, &frame, threshold, None, None);
             let mut differ = 0;
             for i in 0..full.len() {
                 if !frame.coverage[i] {
@@ -733,10 +737,24 @@ fn tile_culling_without_dropping_is_shade_gbuffer() {
     let visibility: Vec<f32> = (0..len * frame.lights.len())
         .map(|k| (k % 7) as f32 / 6.0)
         .collect();
+    let albedo: Vec<[u8; 4]> = (0..len)
+        .map(|i| {
+            [
+                (i * 37 % 256) as u8,
+                (i * 11 % 256) as u8,
+                (i * 101 % 256) as u8,
+                255,
+            ]
+        })
+        .collect();
     for level in Level::supported() {
-        let (full, culled) = culled_and_not(level, &model, &m, &frame, 0.0, None);
+        let (full, culled) = culled_and_not(level, &model, &m, &frame, 0.0, None, None);
         assert_eq!(full, culled, "{level}: threshold 0");
-        let (full, culled) = culled_and_not(level, &model, &m, &frame, 0.1, Some(&visibility));
+        // A per-point input read by the points' own index, in a tile's runs.
+        let (full, culled) = culled_and_not(level, &model, &m, &frame, 0.0, None, Some(&albedo));
+        assert_eq!(full, culled, "{level}: threshold 0, 8-bit albedo");
+        let (full, culled) =
+            culled_and_not(level, &model, &m, &frame, 0.1, Some(&visibility), None);
         assert_eq!(full, culled, "{level}: with visibility");
     }
 }

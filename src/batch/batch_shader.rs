@@ -275,6 +275,49 @@ impl<'a, 's, M: BatchModel, L: BatchLight> BatchShader<'a, 's, M, L> {
         )
     }
 
+    /// The points of a tile (`spans`' runs) of the slices and of `inputs`, into the same points
+    /// of `out` (the others untouched), in one kernel call where the kernel runs: its preparation
+    /// (each light's constants in every lane) is paid once a tile, not once a row.
+    pub(super) fn shade_spans<O: Sink>(
+        &self,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &kernel::PointInputs<'_>,
+        out: &mut O,
+        spans: super::tiled::TileSpans<'_>,
+    ) {
+        let kernel = self.kernel.as_ref().filter(|k| {
+            !inputs.per_point_surface()
+                || k.lm.pow == crate::PowStrategy::Auto
+                || k.lm.lobe == prepare::Lobe::None
+        });
+        match kernel {
+            Some(k) => {
+                let call = kernel::CallOf {
+                    model: self.model,
+                    material: self.material,
+                    scene: self.scene,
+                };
+                let len = out.len();
+                let job = kernel::Job {
+                    setup: k,
+                    call: &call,
+                    pos,
+                    nor,
+                    inputs,
+                    out: out.part(0..len),
+                    spans: Some(spans),
+                };
+                super::dispatch::run_level(self.level, job);
+            }
+            None => {
+                for span in spans.runs() {
+                    self.shade_range(pos, nor, inputs, out, span);
+                }
+            }
+        }
+    }
+
     /// Shades the common prefix of the slices, with per-point inputs over at least as many
     /// points; returns its length. The kernel runs when it takes every light and, for per-point
     /// surfaces, when the model's pow strategy is `Auto` (the only plan it runs per lane) or
@@ -305,6 +348,7 @@ impl<'a, 's, M: BatchModel, L: BatchLight> BatchShader<'a, 's, M, L> {
                     nor,
                     inputs,
                     out,
+                    spans: None,
                 };
                 super::dispatch::run_level(self.level, job)
             }

@@ -33,6 +33,7 @@ use super::prepare::{BatchLight, BatchModel, LaneLight, LaneModel, Lobe};
 use super::simd::{Kernels, Simd};
 use super::sink::Sink;
 use super::soa::{SoaRgb, SoaVec3};
+use super::tiled::TileSpans;
 use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::gate::SpecularGate;
 use crate::material::Material;
@@ -303,6 +304,10 @@ pub(crate) struct Job<'a, O = SoaRgb<'a>> {
     pub(crate) nor: SoaVec3<'a>,
     pub(crate) inputs: &'a PointInputs<'a>,
     pub(crate) out: O,
+    /// The runs of points to shade, in increasing order, or `None` for all of them: one call for
+    /// the rows of a tile (`shade_gbuffer_tiled`), so the call's preparation is paid once a tile
+    /// rather than once a row.
+    pub(crate) spans: Option<TileSpans<'a>>,
 }
 
 /// A call's model, material and scene: its [`Call`].
@@ -1409,6 +1414,7 @@ where
         nor,
         inputs,
         mut out,
+        spans,
     } = job;
     let len = pos.len().min(nor.len()).min(out.len());
     let pos = SoaVec3 {
@@ -1492,34 +1498,45 @@ where
             }
         }};
     }
-    let full = len / W * W;
-    let mut i = 0;
-    while i < full {
-        chunk_at!(
-            i,
-            W,
-            [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
-            [load(nor.x, i), load(nor.y, i), load(nor.z, i)]
-        );
-        i += W;
-    }
-    if i < len {
-        // The padding lanes are shaded too (zero normals: flagged) and fixed only up to `count`.
-        let count = len - i;
-        chunk_at!(
-            i,
-            count,
-            [
-                load_tail(pos.x, i, count),
-                load_tail(pos.y, i, count),
-                load_tail(pos.z, i, count),
-            ],
-            [
-                load_tail(nor.x, i, count),
-                load_tail(nor.y, i, count),
-                load_tail(nor.z, i, count),
-            ]
-        );
+    let mut runs = spans.map(TileSpans::runs);
+    let mut whole = Some(0..len);
+    loop {
+        let span = match runs.as_mut() {
+            Some(runs) => runs.next(),
+            None => whole.take(),
+        };
+        let Some(span) = span else { break };
+        let end = span.end.min(len);
+        let mut i = span.start.min(end);
+        let full = i + (end - i) / W * W;
+        while i < full {
+            chunk_at!(
+                i,
+                W,
+                [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
+                [load(nor.x, i), load(nor.y, i), load(nor.z, i)]
+            );
+            i += W;
+        }
+        if i < end {
+            // The padding lanes are shaded too (zero normals: flagged) and fixed only up to
+            // `count`.
+            let count = end - i;
+            chunk_at!(
+                i,
+                count,
+                [
+                    load_tail(pos.x, i, count),
+                    load_tail(pos.y, i, count),
+                    load_tail(pos.z, i, count),
+                ],
+                [
+                    load_tail(nor.x, i, count),
+                    load_tail(nor.y, i, count),
+                    load_tail(nor.z, i, count),
+                ]
+            );
+        }
     }
     write_total!(pending);
     len

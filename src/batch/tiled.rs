@@ -42,6 +42,45 @@ pub struct TileCulling {
     pub threshold: f32,
 }
 
+/// A tile's points in a G-buffer of `width` points a row: per row `y` of `rows`, the points
+/// `y·width + columns`, clipped to the first `n`, and of those only the covered ones.
+#[derive(Clone)]
+pub(crate) struct TileSpans<'a> {
+    pub(crate) rows: core::ops::Range<usize>,
+    pub(crate) width: usize,
+    pub(crate) columns: core::ops::Range<usize>,
+    pub(crate) n: usize,
+    pub(crate) coverage: Option<&'a [bool]>,
+}
+
+impl<'a> TileSpans<'a> {
+    /// The runs of points, in increasing order.
+    pub(crate) fn runs(self) -> impl Iterator<Item = core::ops::Range<usize>> + 'a {
+        let TileSpans {
+            rows,
+            width,
+            columns,
+            n,
+            coverage,
+        } = self;
+        rows.flat_map(move |y| {
+            let row = y * width;
+            let span = (row + columns.start).min(n)..(row + columns.end).min(n);
+            let (whole, covered) = match coverage {
+                Some(c) => (
+                    None,
+                    Some(
+                        covered_runs(&c[span.clone()])
+                            .map(move |r| span.start + r.start..span.start + r.end),
+                    ),
+                ),
+                None => (Some(span), None),
+            };
+            whole.into_iter().chain(covered.into_iter().flatten())
+        })
+    }
+}
+
 /// [`shade_gbuffer`](crate::shade_gbuffer) for scenes with many lights: per tile of the image
 /// (see [`TileCulling`]), the lights whose factor cannot reach `culling.threshold` anywhere in
 /// the tile are left out, as tiled deferred renderers cull lights per screen tile.
@@ -224,19 +263,15 @@ fn tiled<M: BatchModel, L: BatchLight + Copy>(
                 ..*scene
             };
             let shading = BatchShader::at(level, model, material, &tile_scene);
-            for span in spans {
-                match gbuffer.coverage {
-                    Some(c) => {
-                        for r in covered_runs(&c[span.clone()]) {
-                            let run = span.start + r.start..span.start + r.end;
-                            shading.shade_range(pos, nor, &inputs, &mut out, run);
-                        }
-                    }
-                    None => {
-                        shading.shade_range(pos, nor, &inputs, &mut out, span);
-                    }
-                }
-            }
+            // The tile's rows (or their covered runs) in one kernel call.
+            let tile_spans = TileSpans {
+                rows: ty..rows.min(ty.saturating_add(tile)),
+                width,
+                columns: tx..width.min(tx.saturating_add(tile)),
+                n,
+                coverage: gbuffer.coverage,
+            };
+            shading.shade_spans(pos, nor, &inputs, &mut out, tile_spans);
         }
     }
     n
