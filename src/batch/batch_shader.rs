@@ -286,34 +286,12 @@ impl<'a, 's, M: BatchModel, L: BatchLight> BatchShader<'a, 's, M, L> {
         out: &mut O,
         spans: super::tiled::TileSpans<'_>,
     ) {
-        let kernel = self.kernel.as_ref().filter(|k| {
-            !inputs.per_point_surface()
-                || k.lm.pow == crate::PowStrategy::Auto
-                || k.lm.lobe == prepare::Lobe::None
-        });
-        match kernel {
-            Some(k) => {
-                let call = kernel::CallOf {
-                    model: self.model,
-                    material: self.material,
-                    scene: self.scene,
-                };
-                let len = out.len();
-                let job = kernel::Job {
-                    setup: k,
-                    call: &call,
-                    pos,
-                    nor,
-                    inputs,
-                    out: out.part(0..len),
-                    spans: Some(spans),
-                };
-                super::dispatch::run_level(self.level, job);
-            }
-            None => {
-                for span in spans.runs() {
-                    self.shade_range(pos, nor, inputs, out, span);
-                }
+        if let Some(k) = self.kernel_for(inputs) {
+            let len = out.len();
+            self.run_kernel(k, pos, nor, inputs, out.part(0..len), Some(spans));
+        } else {
+            for span in spans.runs() {
+                self.shade_range(pos, nor, inputs, out, span);
             }
         }
     }
@@ -329,31 +307,48 @@ impl<'a, 's, M: BatchModel, L: BatchLight> BatchShader<'a, 's, M, L> {
         inputs: &kernel::PointInputs<'_>,
         out: O,
     ) -> usize {
-        let kernel = self.kernel.as_ref().filter(|k| {
+        if let Some(k) = self.kernel_for(inputs) {
+            self.run_kernel(k, pos, nor, inputs, out, None)
+        } else {
+            scalar(self.model, self.material, self.scene, pos, nor, inputs, out)
+        }
+    }
+
+    /// The kernel's setup where the kernel runs these inputs (see [`shade_inputs`](Self::shade_inputs)).
+    fn kernel_for(&self, inputs: &kernel::PointInputs<'_>) -> Option<&kernel::Setup<'a>> {
+        self.kernel.as_ref().filter(|k| {
             !inputs.per_point_surface()
                 || k.lm.pow == crate::PowStrategy::Auto
                 || k.lm.lobe == prepare::Lobe::None
-        });
-        match kernel {
-            Some(k) => {
-                let call = kernel::CallOf {
-                    model: self.model,
-                    material: self.material,
-                    scene: self.scene,
-                };
-                let job = kernel::Job {
-                    setup: k,
-                    call: &call,
-                    pos,
-                    nor,
-                    inputs,
-                    out,
-                    spans: None,
-                };
-                super::dispatch::run_level(self.level, job)
-            }
-            None => scalar(self.model, self.material, self.scene, pos, nor, inputs, out),
-        }
+        })
+    }
+
+    /// One kernel call with setup `k` (from [`kernel_for`](Self::kernel_for)) over the slices, or
+    /// over `spans`' runs of them.
+    fn run_kernel<O: Sink>(
+        &self,
+        k: &kernel::Setup<'_>,
+        pos: SoaVec3<'_>,
+        nor: SoaVec3<'_>,
+        inputs: &kernel::PointInputs<'_>,
+        out: O,
+        spans: Option<super::tiled::TileSpans<'_>>,
+    ) -> usize {
+        let call = kernel::CallOf {
+            model: self.model,
+            material: self.material,
+            scene: self.scene,
+        };
+        let job = kernel::Job {
+            setup: k,
+            call: &call,
+            pos,
+            nor,
+            inputs,
+            out,
+            spans,
+        };
+        super::dispatch::run_level(self.level, job)
     }
 }
 
