@@ -970,9 +970,10 @@ pub(crate) struct ChunkLights<'a, S: Simd> {
 }
 
 /// How many lights past the first [`PREPARED`] a call prepares once, on the stack of the level's
-/// kernel (about 14 KiB: 252 bytes each on x86_64), instead of once per chunk: a scene of 64 lights (per-tile culling's
-/// case) prepares each light once per call. Before, each was prepared per chunk, a trait-object
-/// call and an `f64` overflow test that took about a third of the every-light G-buffer bench.
+/// kernel (about 14 KiB: 252 bytes each on x86_64), instead of once per chunk: a scene of 64
+/// lights (per-tile culling's case) prepares each light once per call. Before, each was
+/// prepared per chunk, a trait-object call and an `f64` overflow test that took about a third
+/// of the every-light G-buffer bench.
 pub(crate) const MORE: usize = 56;
 
 /// Shades 16 points. Returns the colours and the lanes the scalar path must redo (bit `i` for
