@@ -1105,7 +1105,13 @@ where
                 let (d, _) = offset_to(s, position, p, &mut ok);
                 let spot = spot.as_ref().map(|spot| (spot, light.spot_pow));
                 let (l, att) = falloff(s, &d, &light.flat, spot);
-                (s.mul(dot(s, n, &l), inv_n), l, inv_v, att)
+                // N·L at most 1, as the exact cosine is: this light's factor can reach
+                // f32::MAX (an inverse-square falloff with a huge power), and a cosine rounded
+                // above 1 would carry `f·max(N·L, 0)` (or the cosine gate's `f·w·N·L`) past it
+                // to +∞ where the exact product is finite. Point lights' factors are at most
+                // 1/MIN_DENOMINATOR, and directional lights' 1.
+                let nl = s.min(s.mul(dot(s, n, &l), inv_n), one);
+                (nl, l, inv_v, att)
             }
         };
         let nl0 = s.max(nl, zero);
