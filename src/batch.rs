@@ -50,7 +50,9 @@
 //! ```
 //!
 //! Every weight `f·d` and `min(f·w, MAX)` is finite (a normalisation factor can be as large as
-//! `f32::MAX`, which is why `f·w` is clamped) and every colour is finite, so no product is `0·∞`:
+//! `f32::MAX`, which is why `f·w` is clamped; a falloff's factor can reach `f32::MAX` too, which
+//! is why the kernel clamps that light's `N·L` at 1, as the exact cosine is) and every colour is
+//! finite, so no product is `0·∞`:
 //! overflow saturates and never turns into NaN. Each term is therefore
 //! `min(K·min(exact sum, MAX), MAX)` up to rounding, the same in the kernel and in `shade`, also
 //! in the overflow regime; only at the threshold itself can an ulp decide between a finite sum and
