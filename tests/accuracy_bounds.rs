@@ -301,6 +301,32 @@ const BOUNDS: &[Bound] = &[
         "measured 2.10e-5. The same band; elsewhere δ ≤ 2⁻²² moves c^e by e·c^(e−1)·δ ≤ e·δ ≤ \
          1e4·2⁻²² = 2.4e-3 for e ≥ 1 (for e < 1, c ≥ cos 1.5 bounds it by δ/0.07 = 3.4e-6)",
     ),
+    // The batch kernel's spot factor: its own pow for c^e (the batch module's "Accuracy": 3.3e-5
+    // relative to max(c^e, 2^-24), the rows' floor), on top of the scalar rows' cosine error and
+    // N·L within 2e-6 of 1.
+    Bound(
+        "shade_batch spot factor (Lambert, N·L ≈ 1)",
+        "random axis",
+        Rel,
+        4e-5,
+        "measured 4.55e-6: the pow plan's 3.3e-5 (2.2e-5 for a non-whole e), plus the cosine's \
+         rounding raised to e ≤ 8 (the scalar row: 1.97e-6) and N·L's 2e-6",
+    ),
+    Bound(
+        "shade_batch spot factor (Lambert, N·L ≈ 1)",
+        "exponent in",
+        Rel,
+        2.5e-3,
+        "measured 5.72e-4: the scalar row's bound for the cosine's error raised to e ≤ 1e4 \
+         (2.39e-3, plus powf's ulp), plus the pow plan's 3.3e-5 and N·L's 2e-6",
+    ),
+    Bound(
+        "shade_batch spot factor (Lambert, N·L ≈ 1)",
+        "exponent in",
+        Abs,
+        2.5e-3,
+        "measured 2.94e-5: the scalar row's 2.4e-3, plus the pow plan's 3.3e-5 of a factor ≤ 1",
+    ),
     // Lobes, ordinary: abs error from the f32 cosines (about 1e-7) times s.
     Bound(
         "Incidence::r_dot_v",

@@ -485,6 +485,7 @@ pub fn rows(n: usize) -> Vec<Row> {
     let mut out = Vec::new();
     geometry(n, &mut out);
     attenuation(n, &mut out);
+    batch_spot(n, &mut out);
     lobes(n, &mut out);
     colour_rows(n, &mut out);
     out
@@ -878,6 +879,130 @@ fn attenuation(n: usize, out: &mut Vec<Row>) {
             1e-30,
             s,
         ));
+    }
+}
+
+/// The spot factor as the batch kernel computes it (its own vector `pow` for the cone's `c^e`,
+/// `PowStrategy::Auto`'s plan for `e`), read through a Lambert diffuse: one spot light at the
+/// origin with unit diffuse colour and no falloff, `kd = 1`, and each point's normal pointing at
+/// the light, so the output is `spot(c)·N·L`. Measured against the `f64` reference of the same
+/// product from the same `f32` inputs, at every level this machine supports (the largest error
+/// over the levels), 16 points per light so every lane of a chunk is used.
+fn batch_spot(n: usize, out: &mut Vec<Row>) {
+    for (kind, domain, seed) in [
+        (
+            ORD,
+            "random axis, cutoff, exponent in [0, 8]; L near the cone; every level, N toward the light",
+            26u64,
+        ),
+        (
+            ADV,
+            "exponent in [0, 1e4]; L within 1e-6 rad of the cone's edge (either side accepted within 2⁻²² of it); every level, N toward the light",
+            27,
+        ),
+    ] {
+        let mut s = Stats::default();
+        for level in phong::Level::supported() {
+            let mut rng = Rng::new(seed);
+            for _ in 0..n.div_ceil(BATCH_SPOT_POINTS) {
+                batch_spot_call(&mut rng, kind, level, &mut s);
+            }
+        }
+        out.push(row(
+            "shade_batch spot factor (Lambert, N·L ≈ 1)",
+            kind,
+            domain,
+            kind == ORD,
+            BATCH_SPOT_FLOOR,
+            s,
+        ));
+    }
+}
+
+/// Points per light in [`batch_spot`]: one chunk of the widest level.
+const BATCH_SPOT_POINTS: usize = 16;
+
+/// The batch spot rows' relative-error floor, `2⁻²⁴`: the kernel's `pow` promises a relative
+/// error against `max(c^e, 2⁻²⁴)` (the batch module's "Accuracy"), so smaller factors are judged
+/// by the absolute column.
+const BATCH_SPOT_FLOOR: f64 = 1.0 / 16_777_216.0;
+
+fn batch_spot_call(rng: &mut Rng, kind: &str, level: phong::Level, s: &mut Stats) {
+    let axis = rng.unit_vec3();
+    let cutoff = rng.range(0.05, 1.5) as f32;
+    let e = if kind == ORD {
+        rng.range(0.0, 8.0)
+    } else {
+        rng.log_range(1e-3, 1e4)
+    } as f32;
+    let spot = SpotLight::try_new(
+        Vec3::ZERO,
+        axis,
+        cutoff,
+        e,
+        Attenuation::None,
+        LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO).unwrap(),
+    )
+    .unwrap();
+    let mut pos = [[0f32; BATCH_SPOT_POINTS]; 3];
+    let mut nor = [[0f32; BATCH_SPOT_POINTS]; 3];
+    for i in 0..BATCH_SPOT_POINTS {
+        let theta = if kind == ORD {
+            rng.range(0.0, cutoff as f64 * 1.2)
+        } else {
+            cutoff as f64 + rng.range(-1e-6, 1e-6)
+        };
+        // The point lies along the beam at angle `theta` from the axis; its normal is the unit
+        // direction back to the light.
+        let beam = rng.at_angle(spot.axis(), theta);
+        let p = beam * rng.range(0.5, 20.0) as f32;
+        for k in 0..3 {
+            pos[k][i] = p[k];
+            nor[k][i] = -beam[k];
+        }
+    }
+    let material = Material::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO, 1.0).unwrap();
+    let lights = [spot];
+    let scene = phong::Scene {
+        lights: &lights,
+        ambient: Vec3::ZERO,
+        viewer: Viewer::Infinite(Vec3::Z),
+    };
+    let mut o = [[0f32; BATCH_SPOT_POINTS]; 3];
+    let [ox, oy, oz] = &mut o;
+    phong::shade_batch_with_level(
+        level,
+        &Lambert::default(),
+        &material,
+        &scene,
+        phong::SoaVec3::new(&pos[0], &pos[1], &pos[2]),
+        phong::SoaVec3::new(&nor[0], &nor[1], &nor[2]),
+        phong::SoaRgb::new(ox, oy, oz),
+    )
+    .expect("a supported level");
+    let cos_cutoff = spot.cos_cutoff() as f64;
+    for i in 0..BATCH_SPOT_POINTS {
+        let p = DVec3::new(pos[0][i] as f64, pos[1][i] as f64, pos[2][i] as f64);
+        let nv = DVec3::new(nor[0][i] as f64, nor[1][i] as f64, nor[2][i] as f64).normalize();
+        let l = -p.normalize();
+        let c = -l.dot(r::d3(spot.axis()));
+        let got = o[0][i];
+        let factor = if (c - cos_cutoff).abs() <= SPOT_EDGE_BAND {
+            // Either side of the edge is right here (see the `SpotLight::spot_factor` rows).
+            if got == 0.0 {
+                0.0
+            } else {
+                r::lobe_pow(c, e as f64)
+            }
+        } else {
+            r::spot_factor(l, r::d3(spot.axis()), cos_cutoff, e as f64)
+        };
+        let want = factor * nv.dot(l).max(0.0);
+        s.scalar(got, want, BATCH_SPOT_FLOOR, || {
+            format!("{level}: axis = {axis:?}, cutoff = {cutoff}, e = {e}, p = {p:?}")
+        });
+        // The three channels are the same operations on the same values.
+        assert!(o[1][i] == got && o[2][i] == got, "grey light, grey result");
     }
 }
 

@@ -141,13 +141,28 @@ fn accuracy_md() -> String {
     );
 
     o.push_str("## Attenuation and spot lights\n\n");
-    table(&mut o, &find(&["Attenuation::", "SpotLight::"]));
+    table(
+        &mut o,
+        &find(&["Attenuation::", "SpotLight::", "shade_batch spot"]),
+    );
     o.push_str(
         "`SpotLight::spot_factor` decides its cone test on the `f32` cosine `−L·axis`, which is \
          within about 3·2⁻²⁴ of the exact one. Within 2⁻²² of the edge `cos cutoff` the factor \
          may therefore land on either side, a step between 0 and `(cos cutoff)^e` (up to 1 for a \
          small exponent): the rows accept either answer there and measure the error of the one \
          given. Farther from the edge the decision must be the exact one.\n\n",
+    );
+    o.push_str(
+        "The `shade_batch spot factor` rows read the batch kernel's spot factor through a Lambert \
+         diffuse (unit colours, no falloff, each normal pointing at the light, so the output is \
+         `spot(c)·N·L` with `N·L ≈ 1`), 16 points per light, at every level this machine runs; \
+         the error is the largest over the levels. The kernel takes the light's direction and \
+         cosine by the same operations as `SpotLight::spot_factor`, and the cone's power `c^e` by \
+         its own vector `pow` with `PowStrategy::Auto`'s plan for `e` (exact for `e` = 0 and 1), \
+         which the batch module's docs bound by 3.3e-5 relative to `max(c^e, 2⁻²⁴)` (2.2e-5 for \
+         a non-whole `e`): relative errors count where the reference is at least 2⁻²⁴. On top \
+         of that come the scalar rows' cosine error and the kernel's `N·L`, within 2e-6 of the \
+         exact cosine.\n\n",
     );
 
     o.push_str("## Lobes\n\n");
