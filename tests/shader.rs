@@ -226,6 +226,17 @@ fn the_one_light_path_is_the_light_loop_bit_for_bit() {
                         shader.shade_surface(p, n, &texel, [0.5]),
                         "{what}"
                     );
+                    // A shadowed light: the light loop skips its power, the one-light form
+                    // evaluates it and multiplies it by 0. The same bits either way.
+                    for surface in [Surface::of(&m), texel] {
+                        let one = shader.shade_surface(p, n, &surface, [0.0]);
+                        assert_eq!(lone.shade_surface(p, n, &surface, [0.0]), one, "{what}");
+                        assert_eq!(
+                            general.shade_surface(p, n, &surface, [0.0, 1.0]),
+                            one,
+                            "{what}"
+                        );
+                    }
                 }
             }
         }

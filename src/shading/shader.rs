@@ -738,13 +738,19 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             "visibility of light {i} must lie in [0, 1], got {vis}"
         );
         let f = sample.factor;
-        let fv = f * math::clamp_or_lo(vis, 0.0, 1.0);
+        let vis = math::clamp_or_lo(vis, 0.0, 1.0);
+        let fv = f * vis;
         let l = sample.direction;
         let n_dot_l = n.dot(l);
         let wd = r.diffuse(n_dot_l);
         let ws = match LOBE {
             PHONG => {
                 let base = ResolvedModel::phong_base(n_dot_l, n_dot_v, l.dot(v));
+                // A shadowed light (visibility 0) adds `fv·ws = 0` whatever the lobe: its base
+                // is taken as 0, so that the lobe's own branch skips the power for it as for a
+                // base `≤ 0`, with the same bits. Tested on the visibility, known early, rather
+                // than on `fv`, which waits for the attenuation's division.
+                let base = if vis > 0.0 { base } else { 0.0 };
                 specular_scale * r.gate(n_dot_l) * lobe_power(base, pow)
             }
             BLINN => {
