@@ -753,16 +753,13 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 let base = if vis > 0.0 { base } else { 0.0 };
                 specular_scale * r.gate(n_dot_l) * lobe_power(base, pow)
             }
-            BLINN => {
-                // As Phong's, but by a branch of its own: `(N·H)²` is rarely `≤ 0`, so the lobe
-                // selects rather than branches on it, and only the visibility skips the power.
-                if vis > 0.0 {
-                    let base = n_dot_h_squared(n, l, v);
-                    let ws = specular_scale * r.gate(n_dot_l) * lobe_power_selected(base, pow);
-                    if l != Vec3::ZERO { ws } else { 0.0 }
-                } else {
-                    0.0
-                }
+            // As Phong's, but by a branch of its own: `(N·H)²` is rarely `≤ 0`, so the lobe
+            // selects rather than branches on it, and only the visibility skips the power (a
+            // shadowed light falls to the last arm).
+            BLINN if vis > 0.0 => {
+                let base = n_dot_h_squared(n, l, v);
+                let ws = specular_scale * r.gate(n_dot_l) * lobe_power_selected(base, pow);
+                if l != Vec3::ZERO { ws } else { 0.0 }
             }
             _ => 0.0,
         };
