@@ -679,11 +679,35 @@ fn gbuffer_4096(c: &mut Criterion) {
             }
         })
         .collect();
+    // The same proportions in runs of 64 points (four chunks), as a shadow map's regions come:
+    // a run is dark (visibility 0) with probability 0.6, lit with 0.3, and soft otherwise.
+    let shadow_runs: Vec<f32> = {
+        let mut v = Vec::with_capacity(n);
+        while v.len() < n {
+            let u = next();
+            for _ in 0..64 {
+                v.push(if u < 0.6 {
+                    0.0
+                } else if u < 0.9 {
+                    1.0
+                } else {
+                    next()
+                });
+            }
+        }
+        v.truncate(n);
+        v
+    };
     // Every array of the group carved from one buffer at staggered 4 KiB offsets, as
     // `batch_frac`'s are (`Soa`): separate `Vec`s of 16 KiB each start 16 bytes apart within a
     // page, and 4 KiB aliasing between them slows the loop.
     let stride = n + STAGGER;
-    let mut arena = vec![0.0f32; 27 * stride];
+    let mut arena = vec![0.0f32; 28 * stride];
+    // The shadow runs' plane last, after the outputs, so the other planes keep the offsets they
+    // had before it was added (their 4 KiB aliasing with each other, and so their timings).
+    let (arena, runs_plane) = arena.split_at_mut(27 * stride);
+    runs_plane[..n].copy_from_slice(&shadow_runs);
+    let shadow_runs_s: &[f32] = &runs_plane[..n];
     let (inputs, outputs) = arena.split_at_mut(13 * stride);
     let columns: [Vec<f32>; 13] = [
         p.iter().map(|v| v.x).collect(),
@@ -722,6 +746,7 @@ fn gbuffer_4096(c: &mut Criterion) {
             shininess: shininess_s,
         })
         .with_visibility(shadow_s);
+    let buffer_runs = buffer.with_visibility(shadow_runs_s);
     // The same texels as a renderer keeps them, 8-bit sRGB, decoded in the kernel: a white
     // surface whose ambient and diffuse the texel multiplies.
     let (texel_plane, outputs) = outputs.split_at_mut(stride);
@@ -762,6 +787,23 @@ fn gbuffer_4096(c: &mut Criterion) {
             .shade_surface(p[i], nn[i], &surface, [shadow_s[i]])
             .total();
         assert_close("gbuffer", Vec3::new(r[i], gr[i], b[i]), want, i);
+    }
+    phong::shade_gbuffer(&model, &m20, &scene, &buffer_runs, SoaRgb::new(r, gr, b));
+    for i in 0..n {
+        let surface = phong::Surface::textured(
+            Vec3::from(texel[i]),
+            Vec3::splat(strength_s[i]),
+            shininess_s[i],
+        );
+        let want = shader
+            .shade_surface(p[i], nn[i], &surface, [shadow_runs_s[i]])
+            .total();
+        assert_close(
+            "gbuffer, shadows in runs",
+            Vec3::new(r[i], gr[i], b[i]),
+            want,
+            i,
+        );
     }
 
     let mut g = c.benchmark_group("gbuffer_4096");
@@ -822,6 +864,19 @@ fn gbuffer_4096(c: &mut Criterion) {
     g.bench_function("gbuffer_albedo8_rgba8", |bch| {
         bch.iter(|| {
             phong::shade_gbuffer_rgba8(black_box(&model), &m20, &scene, black_box(&buffer8), frame)
+        })
+    });
+    // `gbuffer_rgba8` with its shadows in runs (`shadow_runs`): the kernel adds only the ambient
+    // part of a light that is dark across a whole chunk.
+    g.bench_function("gbuffer_rgba8_shadow_runs", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer_rgba8(
+                black_box(&model),
+                &m20,
+                &scene,
+                black_box(&buffer_runs),
+                frame,
+            )
         })
     });
     g.finish();

@@ -39,6 +39,7 @@ impl Lamp {
 }
 
 /// A G-buffer in array-of-structs form, with its SoA copy made per call.
+#[derive(Clone)]
 struct Points {
     p: Vec<Vec3>,
     n: Vec<Vec3>,
@@ -60,8 +61,10 @@ fn split(v: &[Vec3]) -> [Vec<f32>; 3] {
 
 /// Random points around the lights, with textured surfaces: shininess uniform in `[2, 128]`
 /// (fractional) in most lanes and whole in some (the two `Auto` forms side by side in one
-/// vector), shadow factors that are mostly 0 or 1 and sometimes between, and a few degenerate
-/// points (zero normal, a point at a light, the viewer's position) for the scalar path.
+/// vector), shadow factors that are mostly 0 or 1 and sometimes between (and 0 across every
+/// fourth chunk of 16 points, a shadow map's dark region, where the kernel skips the light's
+/// diffuse and specular parts), and a few degenerate points (zero normal, a point at a light,
+/// the viewer's position) for the scalar path.
 fn points(rng: &mut Rng, len: usize, lamps: &[Lamp], eye: Vec3) -> Points {
     let mut g = Points {
         p: vec![],
@@ -94,10 +97,12 @@ fn points(rng: &mut Rng, len: usize, lamps: &[Lamp], eye: Vec3) -> Points {
             _ => rng.range_f32(2.0, 128.0),
         });
     }
-    for _ in lamps {
-        for _ in 0..len {
+    for j in 0..lamps.len() {
+        for i in 0..len {
             let u = rng.unit_f32();
-            g.vis.push(if u < 0.4 {
+            g.vis.push(if (i / 16 + j) % 4 == 1 {
+                0.0
+            } else if u < 0.4 {
                 1.0
             } else if u < 0.6 {
                 rng.unit_f32()
@@ -321,6 +326,43 @@ fn every_level_agrees_with_the_equation_for_one_light() {
 #[test]
 fn every_level_agrees_with_the_equation_for_three_lights() {
     check(0x5eed_0003, 3, Vec3::new(1.0, -2.0, 4.0));
+}
+
+/// Where a light's visibility is 0 at every point of a chunk, the kernel adds its ambient part
+/// and skips the rest: bit for bit the same light with black diffuse and specular colours and
+/// visibility 1 there, at every level, with and without a per-point surface (and so folded
+/// and not). The points' first light is dark over chunks 2–5 (points 32–95).
+#[test]
+fn a_light_dark_over_whole_chunks_adds_its_ambient_part_alone() {
+    let eye = Vec3::new(0.0, 1.0, 5.0);
+    let (lamps, mut dark, base, plain) = setup(0x5adc, 2, eye);
+    let chunks = 32..96;
+    for i in chunks.clone() {
+        dark.vis[i] = 0.0;
+    }
+    let mut lit = dark.clone();
+    for i in chunks.clone() {
+        lit.vis[i] = 1.0;
+    }
+    let black = [lamps[0].light(0.0), plain[1]];
+    let (scene, black_scene) = (scene_at(&plain, eye), scene_at(&black, eye));
+    for (name, model) in models() {
+        for with_surface in [true, false] {
+            for level in Level::supported() {
+                let a = run(level, &model, &base, &scene, &dark, with_surface, true);
+                let b = run(level, &model, &base, &black_scene, &lit, with_surface, true);
+                for i in chunks.clone() {
+                    assert_eq!(
+                        a[i].to_array().map(f32::to_bits),
+                        b[i].to_array().map(f32::to_bits),
+                        "{name} at {level} (surface {with_surface}): point {i}: {} vs {}",
+                        a[i],
+                        b[i]
+                    );
+                }
+            }
+        }
+    }
 }
 
 /// The 8-bit entry point is `linear_to_srgb8` of the `f32` one, at every level and at every

@@ -1123,6 +1123,30 @@ where
             }
             None => None,
         };
+        // A light shadowed at every point of the chunk (visibility 0 in every lane, as across
+        // a shadow map's dark regions) adds its ambient part alone: its diffuse and specular
+        // products are f·0·w = 0 in every lane the scalar path does not redo (f and w finite),
+        // and the ambient sums below take `att·La` (`Ka⊙La` folded) exactly as here, so the
+        // skip keeps the bits. One test per light and chunk, where there are visibilities.
+        if let Some(vis) = vis {
+            if s.bits(s.gt(vis, zero)) == 0 {
+                if k.specular_on && lm.lobe == Lobe::Blinn {
+                    // The lanes that Blinn-Phong's cosine form sends to the scalar path (below)
+                    // go there still: which path shades a point must not depend on whether its
+                    // neighbours in the chunk are shadowed (a coverage mask or a tile moves them).
+                    let den = s.mul_add(
+                        s.splat(2.0),
+                        s.mul(dot(s, &l, &v), inv_lv),
+                        s.splat(2.0),
+                    );
+                    ok = s.and(ok, s.ge(den, s.splat(BLINN_DEN_MIN)));
+                }
+                for c in 0..if FOLDED { 3 } else { channels } {
+                    amb[c] = s.mul_add(att, la[c], amb[c]);
+                }
+                continue;
+            }
+        }
         let attv = match vis {
             Some(vis) => s.mul(att, vis),
             None => att,
