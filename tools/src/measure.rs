@@ -830,22 +830,8 @@ fn attenuation(n: usize, out: &mut Vec<Row>) {
         let mut rng = Rng::new(seed);
         let mut s = Stats::default();
         for _ in 0..n {
-            let axis = rng.unit_vec3();
-            let cutoff = rng.range(0.05, 1.5) as f32;
-            let e = if kind == ORD {
-                rng.range(0.0, 8.0)
-            } else {
-                rng.log_range(1e-3, 1e4)
-            } as f32;
-            let spot = SpotLight::try_new(
-                Vec3::ZERO,
-                axis,
-                cutoff,
-                e,
-                Attenuation::None,
-                LightColors::BLACK,
-            )
-            .unwrap();
+            let spot = random_spot(&mut rng, kind, LightColors::BLACK);
+            let (axis, cutoff, e) = (spot.axis(), spot.cutoff(), spot.exponent());
             let theta = if kind == ORD {
                 rng.range(0.0, cutoff as f64 * 1.2)
             } else {
@@ -927,7 +913,9 @@ const BATCH_SPOT_POINTS: usize = 16;
 /// by the absolute column.
 const BATCH_SPOT_FLOOR: f64 = 1.0 / 16_777_216.0;
 
-fn batch_spot_call(rng: &mut Rng, kind: &str, level: phong::Level, s: &mut Stats) {
+/// A spot light at the origin for the spot rows, without falloff: a random axis, a cutoff in
+/// `[0.05, 1.5]` rad, and an exponent in `[0, 8]` (`ORD`) or log-uniform in `[1e-3, 1e4]`.
+fn random_spot(rng: &mut Rng, kind: &str, colors: LightColors) -> SpotLight {
     let axis = rng.unit_vec3();
     let cutoff = rng.range(0.05, 1.5) as f32;
     let e = if kind == ORD {
@@ -935,15 +923,13 @@ fn batch_spot_call(rng: &mut Rng, kind: &str, level: phong::Level, s: &mut Stats
     } else {
         rng.log_range(1e-3, 1e4)
     } as f32;
-    let spot = SpotLight::try_new(
-        Vec3::ZERO,
-        axis,
-        cutoff,
-        e,
-        Attenuation::None,
-        LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO).unwrap(),
-    )
-    .unwrap();
+    SpotLight::try_new(Vec3::ZERO, axis, cutoff, e, Attenuation::None, colors).unwrap()
+}
+
+fn batch_spot_call(rng: &mut Rng, kind: &str, level: phong::Level, s: &mut Stats) {
+    let colors = LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ZERO).unwrap();
+    let spot = random_spot(rng, kind, colors);
+    let (axis, cutoff, e) = (spot.axis(), spot.cutoff(), spot.exponent());
     let mut pos = [[0f32; BATCH_SPOT_POINTS]; 3];
     let mut nor = [[0f32; BATCH_SPOT_POINTS]; 3];
     for i in 0..BATCH_SPOT_POINTS {
