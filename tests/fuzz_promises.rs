@@ -1026,15 +1026,23 @@ fn gbuffer(r: &mut Rng, c: &mut Check) {
     ];
     let k: Vec<Vec<f32>> = (0..9).map(|_| v(&mut |r| r.hard_nonneg())).collect();
     let s = v(&mut |r| r.shininess());
+    // Each light's plane: 0, 1 or soft point by point, and for one light in four also dark
+    // across every other run of 16 points, where the kernel skips all but the ambient part.
     let vis = {
         let planes = lights.len().max(1);
-        (0..planes * n)
-            .map(|_| match r.below(3) {
-                0 => 0.0,
-                1 => 1.0,
-                _ => r.unit_f32(),
-            })
-            .collect::<Vec<f32>>()
+        let mut vis = Vec::with_capacity(planes * n);
+        for _ in 0..planes {
+            let dark_runs = r.below(4) == 0;
+            for i in 0..n {
+                vis.push(match r.below(3) {
+                    _ if dark_runs && (i / 16) % 2 == 0 => 0.0,
+                    0 => 0.0,
+                    1 => 1.0,
+                    _ => r.unit_f32(),
+                });
+            }
+        }
+        vis
     };
     let texels: Vec<[u8; 4]> = (0..n)
         .map(|_| [0; 4].map(|_: u8| r.below(256) as u8))
