@@ -721,6 +721,38 @@ pub(super) fn pow<S: Simd, const CALLS: bool>(s: S, plan: PowPlan, flush: f32, x
     s.keep(s.gt(x, s.splat(0.0)), r)
 }
 
+/// Which pow plan a kernel instance is compiled for: any plan, read from the call's
+/// [`Setup`] per chunk (a jump table per light and chunk), or one kind, whose evaluation the
+/// instance runs inline with only the plan's numbers read at run time.
+pub(crate) const PLAN_ANY: u8 = 0;
+/// [`PowPlan::Squaring`], `Auto`'s plan for a whole exponent.
+pub(crate) const PLAN_SQUARING: u8 = 1;
+/// [`PowPlan::Poly`] with [`Poly::P7`], `Auto`'s plan for any other exponent.
+pub(crate) const PLAN_POLY7: u8 = 2;
+
+/// The call's plan as instance `PLAN` evaluates it: for one kind, a value of that kind built
+/// here, so that the compiler knows its kind in the instance (the instance runs only for calls
+/// with a plan of that kind: `run` picks it).
+#[inline(always)]
+fn plan_of<const PLAN: u8>(plan: PowPlan) -> PowPlan {
+    match (PLAN, plan) {
+        (PLAN_SQUARING, _) => PowPlan::Squaring {
+            n: match plan {
+                PowPlan::Squaring { n } => n,
+                _ => 0,
+            },
+        },
+        (PLAN_POLY7, _) => PowPlan::Poly {
+            s: match plan {
+                PowPlan::Poly { s, .. } => s,
+                _ => 0.0,
+            },
+            poly: Poly::P7,
+        },
+        _ => plan,
+    }
+}
+
 /// A chunk's per-point lobe, sanitised as [`Shader::shade_surface`] does: each lane's specular
 /// scale and exponent. The reflectances are loaded apart ([`reflectances`]), after the light
 /// sums: loaded with these, their nine vectors were live across the whole light loop, and the
@@ -919,6 +951,10 @@ pub(crate) struct LightLanes<S: Simd> {
     ls: [S::V; 3],
     /// [`PreparedLight::may_overflow`].
     may_overflow: bool,
+    /// Whether the light is a point light (`LaneLight::Point`), the common kind, which the
+    /// chunk tests before the others: a flag of its own, since LLVM folds a test of the kind
+    /// itself back into one jump table over all four kinds, taken per light and chunk.
+    point: bool,
 }
 
 /// Whether `c + l·d + q·d²` may reach `f32::MAX` for some `d ≤ 10¹⁵`: the lanes the kernel
@@ -957,6 +993,7 @@ impl<S: Simd> LightLanes<S> {
             ld: splat3(s, ld),
             ls: splat3(s, ls),
             may_overflow: light.may_overflow,
+            point: matches!(light.lane, LaneLight::Point { .. }),
         }
     }
 }
@@ -1006,6 +1043,7 @@ fn chunk<S, const FOLDED: bool, const GREY: bool, const CALLS: bool>(
     n: &[S::V; 3],
     surface: Option<&SurfaceV<S>>,
     visibility: Option<(&PointInputs<'_>, usize, usize)>,
+    plan: PowPlan,
 ) -> ([[S::V; 3]; 3], u32)
 where
     S: Simd,
@@ -1015,7 +1053,7 @@ where
     let max = s.splat(math::MAX);
     let nn = dot(s, n, n);
     let mut ok = in_range(s, nn);
-    if !CALLS && surface.is_none() && matches!(k.plan, PowPlan::Exact { .. }) {
+    if !CALLS && surface.is_none() && matches!(plan, PowPlan::Exact { .. }) {
         // Never met (see `Setup::calls_out`); were it met, the scalar path shades every lane.
         ok = s.and(ok, s.lt(zero, zero));
     }
@@ -1062,20 +1100,9 @@ where
         let (la, ld, ls) = (&lj.la, &lj.ld, &lj.ls);
         let light = lj.light;
         // (N·L, L unnormalised, 1/(‖L‖‖V‖), attenuation)
-        let (nl, l, inv_lv, att) = match light.lane {
-            LaneLight::AmbientOnly => {
-                amb = [
-                    s.add(amb[0], la[0]),
-                    s.add(amb[1], la[1]),
-                    s.add(amb[2], la[2]),
-                ];
-                continue;
-            }
-            LaneLight::Directional(_) => {
-                let l = lj.q;
-                (s.mul(dot(s, n, &l), inv_n), l, inv_v, one)
-            }
-            LaneLight::Point { .. } => {
+        // A point light, the common kind, first (see `LightLanes::point`).
+        macro_rules! point_light {
+            () => {{
                 let [c0, c1, c2] = lj.c;
                 let d = [
                     s.sub(lj.q[0], p[0]),
@@ -1100,24 +1127,43 @@ where
                     s.mul(inv, inv_v),
                     att,
                 )
-            }
-            // Never met: `CALLS` is false only where no light is a falloff light (and were it
-            // met, every lane would go to the scalar path).
-            LaneLight::Falloff { .. } if !CALLS => {
-                ok = s.and(ok, s.lt(zero, zero));
-                continue;
-            }
-            LaneLight::Falloff { position, spot, .. } => {
-                let (d, _) = offset_to(s, position, p, &mut ok);
-                let spot = spot.as_ref().map(|spot| (spot, light.spot_pow));
-                let (l, att) = falloff(s, &d, &light.flat, spot);
-                // N·L at most 1, as the exact cosine is: this light's factor can reach
-                // f32::MAX (an inverse-square falloff with a huge power), and a cosine rounded
-                // above 1 would carry `f·max(N·L, 0)` (or the cosine gate's `f·w·N·L`) past it
-                // to +∞ where the exact product is finite. Point lights' factors are at most
-                // 1/MIN_DENOMINATOR, and directional lights' 1.
-                let nl = s.min(s.mul(dot(s, n, &l), inv_n), one);
-                (nl, l, inv_v, att)
+            }};
+        }
+        let (nl, l, inv_lv, att) = if lj.point {
+            point_light!()
+        } else {
+            match light.lane {
+                LaneLight::AmbientOnly => {
+                    amb = [
+                        s.add(amb[0], la[0]),
+                        s.add(amb[1], la[1]),
+                        s.add(amb[2], la[2]),
+                    ];
+                    continue;
+                }
+                LaneLight::Directional(_) => {
+                    let l = lj.q;
+                    (s.mul(dot(s, n, &l), inv_n), l, inv_v, one)
+                }
+                LaneLight::Point { .. } => point_light!(),
+                // Never met: `CALLS` is false only where no light is a falloff light (and were
+                // it met, every lane would go to the scalar path).
+                LaneLight::Falloff { .. } if !CALLS => {
+                    ok = s.and(ok, s.lt(zero, zero));
+                    continue;
+                }
+                LaneLight::Falloff { position, spot, .. } => {
+                    let (d, _) = offset_to(s, position, p, &mut ok);
+                    let spot = spot.as_ref().map(|spot| (spot, light.spot_pow));
+                    let (l, att) = falloff(s, &d, &light.flat, spot);
+                    // N·L at most 1, as the exact cosine is: this light's factor can reach
+                    // f32::MAX (an inverse-square falloff with a huge power), and a cosine
+                    // rounded above 1 would carry `f·max(N·L, 0)` (or the cosine gate's
+                    // `f·w·N·L`) past it to +∞ where the exact product is finite. Point lights'
+                    // factors are at most 1/MIN_DENOMINATOR, and directional lights' 1.
+                    let nl = s.min(s.mul(dot(s, n, &l), inv_n), one);
+                    (nl, l, inv_v, att)
+                }
             }
         };
         let nl0 = s.max(nl, zero);
@@ -1173,7 +1219,7 @@ where
             };
             let lobe = match surface {
                 Some(sf) => auto_pow(s, base, sf),
-                None => pow::<S, CALLS>(s, k.plan, k.flush, base),
+                None => pow::<S, CALLS>(s, plan, k.flush, base),
             };
             Some(if visibility.is_some() {
                 // The gate without a branch on its kind (see `gate` above).
@@ -1324,10 +1370,19 @@ fn finish<S: Simd, const FOLDED: bool>(
 pub(crate) fn run<S: Kernels, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>) -> usize {
     if !INPUTS {
         return match (job.setup.folded, job.setup.calls_out) {
-            (true, false) => s.instance::<O, true, false, false, false, false>(job),
-            (true, true) => s.instance::<O, true, false, true, false, false>(job),
-            (false, false) => s.instance::<O, false, false, false, false, false>(job),
-            (false, true) => s.instance::<O, false, false, true, false, false>(job),
+            // `CALLS` is false only where the plan is not `Exact`.
+            (true, false) => match job.setup.plan {
+                PowPlan::Squaring { .. } => {
+                    s.instance::<O, true, false, false, false, false, PLAN_SQUARING>(job)
+                }
+                PowPlan::Poly { poly: Poly::P7, .. } => {
+                    s.instance::<O, true, false, false, false, false, PLAN_POLY7>(job)
+                }
+                _ => s.instance::<O, true, false, false, false, false, PLAN_ANY>(job),
+            },
+            (true, true) => s.instance::<O, true, false, true, false, false, PLAN_ANY>(job),
+            (false, false) => s.instance::<O, false, false, false, false, false, PLAN_ANY>(job),
+            (false, true) => s.instance::<O, false, false, true, false, false, PLAN_ANY>(job),
         };
     }
     // A per-point surface without visibilities runs the instance with both, its visibilities
@@ -1336,14 +1391,16 @@ pub(crate) fn run<S: Kernels, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>
     let k = job.setup;
     match job.inputs.per_point_surface() {
         false => match (k.folded, k.calls_out) {
-            (true, true) => s.instance::<O, true, false, true, false, true>(job),
-            (true, false) => s.instance::<O, true, false, false, false, true>(job),
-            (false, true) => s.instance::<O, false, false, true, false, true>(job),
-            (false, false) => s.instance::<O, false, false, false, false, true>(job),
+            (true, true) => s.instance::<O, true, false, true, false, true, PLAN_ANY>(job),
+            (true, false) => s.instance::<O, true, false, false, false, true, PLAN_ANY>(job),
+            (false, true) => s.instance::<O, false, false, true, false, true, PLAN_ANY>(job),
+            (false, false) => s.instance::<O, false, false, false, false, true, PLAN_ANY>(job),
         },
-        true if k.surface_calls_out => s.instance::<O, false, false, true, true, true>(job),
-        true if k.grey => s.instance::<O, false, true, false, true, true>(job),
-        true => s.instance::<O, false, false, false, true, true>(job),
+        true if k.surface_calls_out => {
+            s.instance::<O, false, false, true, true, true, PLAN_ANY>(job)
+        }
+        true if k.grey => s.instance::<O, false, true, false, true, true, PLAN_ANY>(job),
+        true => s.instance::<O, false, false, false, true, true, PLAN_ANY>(job),
     }
 }
 
@@ -1354,7 +1411,7 @@ pub(crate) fn run<S: Kernels, O: Sink, const INPUTS: bool>(s: S, job: Job<'_, O>
 /// the one instance that writes the three terms.
 #[inline(always)]
 pub(crate) fn run_general<S: Kernels, O: Sink>(s: S, job: Job<'_, O>) -> usize {
-    s.instance::<O, false, false, true, true, true>(job)
+    s.instance::<O, false, false, true, true, true, PLAN_ANY>(job)
 }
 
 /// Whether a call has per-point inputs (a G-buffer's surfaces or visibilities).
@@ -1388,6 +1445,7 @@ fn shade_chunk<
     inputs: &PointInputs<'_>,
     i: usize,
     count: usize,
+    plan: PowPlan,
 ) -> ([[S::V; 3]; 3], u32)
 where
     S: Simd,
@@ -1411,6 +1469,7 @@ where
         &[s.load(&n[0]), s.load(&n[1]), s.load(&n[2])],
         surface.as_ref(),
         visibility,
+        plan,
     );
     // The reflectances only now, after the sums (see `SurfaceV`).
     let reflectances = if SURFACE {
@@ -1435,6 +1494,7 @@ pub(crate) fn run_with<
     const CALLS: bool,
     const SURFACE: bool,
     const VISIBILITY: bool,
+    const PLAN: u8,
 >(
     s: S,
     job: Job<'_, O>,
@@ -1452,6 +1512,7 @@ where
         spans,
     } = job;
     let len = pos.len().min(nor.len()).min(out.len());
+    let plan = plan_of::<PLAN>(k.plan);
     let pos = SoaVec3 {
         x: &pos.x[..len],
         y: &pos.y[..len],
@@ -1520,6 +1581,7 @@ where
                 inputs,
                 i,
                 count,
+                plan,
             );
             let bad = bad & (u32::MAX >> (32 - count));
             if defer && bad == 0 {

@@ -177,6 +177,7 @@ pub(crate) trait Kernels: Copy {
         const CALLS: bool,
         const SURFACE: bool,
         const VISIBILITY: bool,
+        const PLAN: u8,
     >(
         self,
         job: super::kernel::Job<'_, O>,
@@ -203,17 +204,18 @@ macro_rules! level_entry {
             const CALLS: bool,
             const SURFACE: bool,
             const VISIBILITY: bool,
+            const PLAN: u8,
         >(
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY>(
+            $crate::batch::kernel::run_with::<$level, O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY, PLAN>(
                 t, job,
             )
         }
 
         level_entry!(@impl $level, |t, job| level_entry!(@call $($features)?;
-            kernel::<O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY>(t, job)));
+            kernel::<O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY, PLAN>(t, job)));
     };
     // A level that runs only when a caller forces it: one instance per output form, the general
     // one (no folding, per-point inputs read where the call has them), so the build compiles
@@ -225,7 +227,7 @@ macro_rules! level_entry {
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, false, false, true, true, true>(t, job)
+            $crate::batch::kernel::run_with::<$level, O, false, false, true, true, true, { $crate::batch::kernel::PLAN_ANY }>(t, job)
         }
 
         // Every instance is the general one.
@@ -270,6 +272,7 @@ macro_rules! level_entry {
                 const CALLS: bool,
                 const SURFACE: bool,
                 const VISIBILITY: bool,
+                const PLAN: u8,
             >(
                 self,
                 $job: $crate::batch::kernel::Job<'_, O>,
