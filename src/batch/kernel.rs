@@ -461,6 +461,15 @@ fn load(s: &[f32], i: usize) -> Lanes {
     }
 }
 
+/// A piece of exactly `W` values as lanes.
+#[inline(always)]
+fn lanes(piece: &[f32]) -> Lanes {
+    match <&Lanes>::try_from(piece) {
+        Ok(a) => *a,
+        Err(_) => [0.0; W], // unreachable: `chunks_exact(W)` gives pieces W long
+    }
+}
+
 #[inline(always)]
 pub(crate) fn load_tail(s: &[f32], i: usize, count: usize) -> Lanes {
     // A whole chunk by a fixed-size load: a copy of variable length is a call to `memcpy`, ten
@@ -919,12 +928,8 @@ fn in_range<S: Simd>(s: S, x: S::V) -> S::M {
 /// `q − p` per lane, its squared length, and `ok` with the lanes whose squared length leaves
 /// `[LO, HI]` cleared (for the scalar path).
 #[inline(always)]
-fn offset_to<S: Simd>(s: S, q: Vec3, p: &[S::V; 3], ok: &mut S::M) -> ([S::V; 3], S::V) {
-    let d = [
-        s.sub(s.splat(q.x), p[0]),
-        s.sub(s.splat(q.y), p[1]),
-        s.sub(s.splat(q.z), p[2]),
-    ];
+fn offset_to<S: Simd>(s: S, q: &[S::V; 3], p: &[S::V; 3], ok: &mut S::M) -> ([S::V; 3], S::V) {
+    let d = [s.sub(q[0], p[0]), s.sub(q[1], p[1]), s.sub(q[2], p[2])];
     let dd = dot(s, &d, &d);
     *ok = s.and(*ok, in_range(s, dd));
     (d, dd)
@@ -1001,9 +1006,12 @@ impl<S: Simd> LightLanes<S> {
 /// The scene's lights as the chunk loop reads them: the first [`PREPARED`] with their constants
 /// in every lane (built once per call), and, for a scene with more, the next ones prepared once
 /// per call ([`MORE`] at most; past those, each is prepared per chunk through [`Call::light`]).
+/// With them, the viewer's position in every lane, for the same reason.
 pub(crate) struct ChunkLights<'a, S: Simd> {
     first: [LightLanes<S>; PREPARED],
     more: &'a [PreparedLight],
+    /// The eye of a viewer at a point ([`ViewK::At`]); zero for an infinite viewer.
+    eye: [S::V; 3],
 }
 
 /// Blinn-Phong's cosine-form denominator `2 + 2 L·V = ‖L + V‖²` for unit `L`, `V`, from `L·V`.
@@ -1059,8 +1067,8 @@ where
     }
     let inv_n = s.rsqrt(nn);
     let (v, inv_v) = match k.view {
-        ViewK::At(e) => {
-            let (d, vv) = offset_to(s, e, p, &mut ok);
+        ViewK::At(_) => {
+            let (d, vv) = offset_to(s, &lights.eye, p, &mut ok);
             (d, s.rsqrt(vv))
         }
         ViewK::Infinite(d) => (splat3(s, d), one),
@@ -1153,7 +1161,7 @@ where
                     continue;
                 }
                 LaneLight::Falloff { position, spot, .. } => {
-                    let (d, _) = offset_to(s, position, p, &mut ok);
+                    let (d, _) = offset_to(s, &splat3(s, position), p, &mut ok);
                     let spot = spot.as_ref().map(|spot| (spot, light.spot_pow));
                     let (l, att) = falloff(s, &d, &light.flat, spot);
                     // N·L at most 1, as the exact cosine is: this light's factor can reach
@@ -1547,7 +1555,11 @@ where
     } else {
         &[]
     };
-    let lights = ChunkLights { first, more };
+    let eye = match k.view {
+        ViewK::At(e) => splat3(s, e),
+        ViewK::Infinite(_) => [s.splat(0.0); 3],
+    };
+    let lights = ChunkLights { first, more, eye };
     // A sink that encodes its output (`Sink::DEFER`: 8-bit pixels) writes each chunk after the
     // next one is shaded: the encoding's chain of dependent operations then overlaps the next
     // chunk's shading instead of following its own chunk's (`shade_batch_rgba8` +24% at AVX-512,
@@ -1606,12 +1618,23 @@ where
         let end = span.end.min(len);
         let mut i = span.start.min(end);
         let full = i + (end - i) / W * W;
-        while i < full {
+        // Whole chunks through `chunks_exact`, whose pieces the compiler knows to be `W` long:
+        // indexed loads cost a bounds test and six pointers reloaded from the stack per chunk.
+        macro_rules! whole {
+            ($a:expr) => {
+                $a[i..full].chunks_exact(W)
+            };
+        }
+        let inputs = whole!(pos.x)
+            .zip(whole!(pos.y))
+            .zip(whole!(pos.z))
+            .zip(whole!(nor.x).zip(whole!(nor.y)).zip(whole!(nor.z)));
+        for (((px, py), pz), ((nx, ny), nz)) in inputs {
             chunk_at!(
                 i,
                 W,
-                [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
-                [load(nor.x, i), load(nor.y, i), load(nor.z, i)]
+                [lanes(px), lanes(py), lanes(pz)],
+                [lanes(nx), lanes(ny), lanes(nz)]
             );
             i += W;
         }
