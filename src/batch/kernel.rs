@@ -461,15 +461,6 @@ fn load(s: &[f32], i: usize) -> Lanes {
     }
 }
 
-/// A piece of exactly `W` values as lanes.
-#[inline(always)]
-fn lanes(piece: &[f32]) -> Lanes {
-    match <&Lanes>::try_from(piece) {
-        Ok(a) => *a,
-        Err(_) => [0.0; W], // unreachable: `chunks_exact(W)` gives pieces W long
-    }
-}
-
 #[inline(always)]
 pub(crate) fn load_tail(s: &[f32], i: usize, count: usize) -> Lanes {
     // A whole chunk by a fixed-size load: a copy of variable length is a call to `memcpy`, ten
@@ -1618,23 +1609,12 @@ where
         let end = span.end.min(len);
         let mut i = span.start.min(end);
         let full = i + (end - i) / W * W;
-        // Whole chunks through `chunks_exact`, whose pieces the compiler knows to be `W` long:
-        // indexed loads cost a bounds test and six pointers reloaded from the stack per chunk.
-        macro_rules! whole {
-            ($a:expr) => {
-                $a[i..full].chunks_exact(W)
-            };
-        }
-        let inputs = whole!(pos.x)
-            .zip(whole!(pos.y))
-            .zip(whole!(pos.z))
-            .zip(whole!(nor.x).zip(whole!(nor.y)).zip(whole!(nor.z)));
-        for (((px, py), pz), ((nx, ny), nz)) in inputs {
+        while i < full {
             chunk_at!(
                 i,
                 W,
-                [lanes(px), lanes(py), lanes(pz)],
-                [lanes(nx), lanes(ny), lanes(nz)]
+                [load(pos.x, i), load(pos.y, i), load(pos.z, i)],
+                [load(nor.x, i), load(nor.y, i), load(nor.z, i)]
             );
             i += W;
         }
