@@ -209,9 +209,9 @@ macro_rules! level_entry {
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY, PLAN>(
-                t, job,
-            )
+            $crate::batch::kernel::run_with::<
+                $level, O, FOLDED, GREY, CALLS, SURFACE, VISIBILITY, PLAN,
+            >(t, job)
         }
 
         level_entry!(@impl $level, |t, job| level_entry!(@call $($features)?;
@@ -227,7 +227,9 @@ macro_rules! level_entry {
             t: $level,
             job: $crate::batch::kernel::Job<'_, O>,
         ) -> usize {
-            $crate::batch::kernel::run_with::<$level, O, false, false, true, true, true, { $crate::batch::kernel::PLAN_ANY }>(t, job)
+            $crate::batch::kernel::run_with::<
+                $level, O, false, false, true, true, true, { $crate::batch::kernel::PLAN_ANY },
+            >(t, job)
         }
 
         // Every instance is the general one.
