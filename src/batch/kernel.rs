@@ -1000,10 +1000,10 @@ impl<S: Simd> LightLanes<S> {
 /// With them, the viewer's position in every lane, for the same reason.
 ///
 /// Built in place once per call, and only for the lights there are: the first light's lanes,
-/// then a slot per further light up to [`PREPARED`], empty past the scene's last. Filled as one
-/// array of `PREPARED` copies and then moved into place, the lanes (about 1.2 KiB a light) cost
-/// every call 10 KiB of stores and a `memcpy` of as much: 4–5% of a 4096-point `shade_batch` at
-/// AVX-512 (sampled profile of `levels_4096`, 2026-11-29).
+/// then a slot per further light up to [`PREPARED`], empty past the scene's last. When they were
+/// filled as one array of `PREPARED` copies and then moved into place, the lanes (about 1.2 KiB
+/// a light) cost every call 10 KiB of stores and a `memcpy` of as much: 4–5% of a 4096-point
+/// `shade_batch` at AVX-512 (sampled profile of `levels_4096`, 2026-11-29).
 pub(crate) struct ChunkLights<'a, S: Simd> {
     zeroth: LightLanes<S>,
     rest: [Option<LightLanes<S>>; PREPARED - 1],
@@ -1571,8 +1571,13 @@ where
             ViewK::Infinite(_) => [s.splat(0.0); 3],
         },
     };
-    let further = k.lights.min(PREPARED).saturating_sub(1);
-    for (slot, &light) in lights.rest.iter_mut().zip(&k.prepared[1..]).take(further) {
+    // The zip stops at the last slot; `take` at the scene's last light.
+    for (slot, &light) in lights
+        .rest
+        .iter_mut()
+        .zip(&k.prepared[1..])
+        .take(k.lights.saturating_sub(1))
+    {
         *slot = Some(LightLanes::new(s, light, FOLDED));
     }
     // A sink that encodes its output (`Sink::DEFER`: 8-bit pixels) writes each chunk after the
