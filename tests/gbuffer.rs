@@ -409,6 +409,81 @@ fn eight_bit_output_is_the_encoded_f32_output() {
     }
 }
 
+/// A textured surface as LearnOpenGL builds it, one texture as both `Ka` and `Kd` and a specular
+/// strength map as a grey `Ks` (the kernel loads such shared planes once), shades to the same
+/// bits as the same values in separate planes, at every level.
+#[test]
+fn shared_surface_planes_shade_as_separate_copies() {
+    let mut rng = Rng::new(0x5a4e);
+    let lamps = lamps(&mut rng, 2);
+    let eye = Vec3::new(-0.5, 1.5, 4.0);
+    let g = points(&mut rng, 203, &lamps, eye);
+    let lights: Vec<PointLight> = lamps.iter().map(|l| l.light(1.0)).collect();
+    let scene = scene_at(&lights, eye);
+    let base =
+        Material::try_new(Vec3::splat(0.2), Vec3::splat(0.6), Vec3::splat(0.4), 24.0).unwrap();
+    let (p, n) = (split(&g.p), split(&g.n));
+    let kd = split(&g.kd);
+    let strength: Vec<f32> = g.ks.iter().map(|k| k.x).collect();
+    // The copies: equal values, distinct slices.
+    let (ka_copy, ks_copy) = (
+        kd.clone(),
+        [strength.clone(), strength.clone(), strength.clone()],
+    );
+    fn v3(a: &[Vec<f32>; 3]) -> SoaVec3<'_> {
+        SoaVec3::new(&a[0], &a[1], &a[2])
+    }
+    let positions = GBuffer::new(v3(&p), v3(&n));
+    let shared = positions
+        .with_surface(SoaSurface {
+            ambient: v3(&kd),
+            diffuse: v3(&kd),
+            specular: SoaVec3::new(&strength, &strength, &strength),
+            shininess: &g.s,
+        })
+        .with_visibility(&g.vis);
+    let separate = positions
+        .with_surface(SoaSurface {
+            ambient: v3(&ka_copy),
+            diffuse: v3(&kd),
+            specular: v3(&ks_copy),
+            shininess: &g.s,
+        })
+        .with_visibility(&g.vis);
+    let len = g.p.len();
+    for (name, model) in models() {
+        for level in Level::supported() {
+            let shade = |buffer: &GBuffer<'_>| {
+                let mut out = [vec![-1.0; len], vec![-1.0; len], vec![-1.0; len]];
+                let [r, gr, b] = &mut out;
+                let shaded = phong::shade_gbuffer_with_level(
+                    level,
+                    &model,
+                    &base,
+                    &scene,
+                    buffer,
+                    SoaRgb::new(r, gr, b),
+                )
+                .unwrap();
+                assert_eq!(shaded, len);
+                out
+            };
+            let (a, b) = (shade(&shared), shade(&separate));
+            for i in 0..len {
+                let (x, y) = (
+                    Vec3::new(a[0][i], a[1][i], a[2][i]),
+                    Vec3::new(b[0][i], b[1][i], b[2][i]),
+                );
+                assert_eq!(
+                    x.to_array().map(f32::to_bits),
+                    y.to_array().map(f32::to_bits),
+                    "{name} at {level}: point {i} gave {x} with shared planes, {y} with copies"
+                );
+            }
+        }
+    }
+}
+
 /// Without per-point inputs the G-buffer call is `shade_batch`, bit for bit; a visibility slice
 /// too short for its planes shades nothing (release builds; debug builds assert).
 #[test]

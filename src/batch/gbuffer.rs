@@ -16,7 +16,9 @@ use crate::shade::Scene;
 ///
 /// A textured renderer in LearnOpenGL's style passes its diffuse texels as both `ambient` and
 /// `diffuse` (see [`Surface::textured`](crate::Surface::textured)), or the diffuse texels times an
-/// ambient-occlusion factor as `ambient`.
+/// ambient-occlusion factor as `ambient`. Pass one slice where values are shared: the kernel
+/// loads a plane once when `ambient` and `diffuse` are the same slices, or the three `specular`
+/// slices are one (a grey strength map), and gives the same bits as separate copies.
 ///
 /// **Domain:** as [`Surface`](crate::Surface): finite reflectances `≥ 0` and shininess `≥ 0`.
 /// Nothing is validated per point: release builds sanitise (NaN and negatives read as 0, `+∞`

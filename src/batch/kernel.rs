@@ -500,6 +500,16 @@ impl PointInputs<'_> {
         }
     }
 
+    /// Whether surface values `a` and `b` are the same at every point: the same slice, or, without
+    /// a surface, the same material value.
+    #[inline(always)]
+    pub(crate) fn same(&self, a: usize, b: usize) -> bool {
+        match self.surface {
+            Some(slices) => core::ptr::eq(slices[a], slices[b]),
+            None => self.base[a].to_bits() == self.base[b].to_bits(),
+        }
+    }
+
     /// Whether the points have surfaces of their own (a surface or an albedo).
     pub(crate) fn per_point_surface(&self) -> bool {
         self.surface.is_some() || self.albedo.is_some()
@@ -847,11 +857,21 @@ fn reflectances<S: Simd>(
             clean(s, surface_lanes!(s, inputs, i, count, $a))
         };
     }
-    Some([
-        [tinted!(0), tinted!(1), tinted!(2)],
-        [tinted!(3), tinted!(4), tinted!(5)],
-        [plain!(6), plain!(7), plain!(8)],
-    ])
+    // LearnOpenGL's textured material passes one texture as both `Ka` and `Kd`, and a specular
+    // strength map as a grey `Ks`: such planes are loaded and sanitised once.
+    let diffuse = [tinted!(3), tinted!(4), tinted!(5)];
+    let ambient = if inputs.same(0, 3) && inputs.same(1, 4) && inputs.same(2, 5) {
+        diffuse
+    } else {
+        [tinted!(0), tinted!(1), tinted!(2)]
+    };
+    let specular = if inputs.same(6, 7) && inputs.same(6, 8) {
+        let k = plain!(6);
+        [k, k, k]
+    } else {
+        [plain!(6), plain!(7), plain!(8)]
+    };
+    Some([ambient, diffuse, specular])
 }
 
 /// `v` with NaN and negatives as 0 and values past `f32::MAX` as `f32::MAX` (`Material::new`'s
