@@ -15,8 +15,11 @@
 //! visibility per light and point (shadow maps), which scales the light's diffuse and specular
 //! parts. It computes [`Shader::shade_surface`](crate::Shader::shade_surface) per point in the
 //! same kernel, each lane with its own shininess. Where a light's visibility is 0 at all 16
-//! points of a chunk (a shadow map's dark regions), the kernel adds that light's ambient part and
-//! skips the rest, with the same result. A coverage mask
+//! points of a chunk (a shadow map's dark regions), or the light lies behind the surface at all
+//! of them (`N·L ≤ 0`, as across a lit sphere's far side) and the model's gate zeroes the lobe
+//! there (any gate but [`SpecularGate::None`](crate::SpecularGate::None)), the kernel adds that
+//! light's ambient part and skips the rest, with the same result. Passing one slice for planes
+//! that are equal ([`SoaSurface`]) saves their loads. A coverage mask
 //! ([`GBuffer::with_coverage`]) leaves the background's pixels unread and unwritten. With many
 //! lights, [`shade_gbuffer_tiled`] shades each tile of the image with only the lights that reach
 //! it ([`TileCulling`]).

@@ -365,6 +365,59 @@ fn a_light_dark_over_whole_chunks_adds_its_ambient_part_alone() {
     }
 }
 
+/// A light behind the surface at every point of a chunk (N·L ≤ 0 in all 16 lanes) adds its
+/// ambient part alone, and the skip keeps the bits: each lane of such chunks is shaded as when
+/// one lane of its chunk faces the light (so the chunk is shaded in full), for every model whose
+/// gate zeroes the lobe behind the surface. Degenerate lanes (a zero normal, a point at the
+/// light) stay in the chunks.
+#[test]
+fn a_light_behind_whole_chunks_adds_its_ambient_part_alone() {
+    let eye = Vec3::new(0.0, 1.0, 5.0);
+    let (lamps, mut behind, base, plain) = setup(0xbac4, 2, eye);
+    let len = behind.p.len();
+    let chunks = 32..96;
+    let mut rng = Rng::new(0xface);
+    for i in chunks.clone() {
+        let to_light = lamps[0].at - behind.p[i];
+        if behind.n[i] != Vec3::ZERO && to_light != Vec3::ZERO {
+            // Away from the light, tilted at random but kept behind it.
+            let away = -to_light.normalize();
+            let tilt = rng.vec3_in(-0.5, 0.5);
+            behind.n[i] = (away + tilt - away * tilt.dot(away).min(0.0)).normalize();
+            assert!(behind.n[i].dot(to_light) < 0.0, "point {i}");
+        }
+        // Lit, so that the skip of a shadowed light is not what runs.
+        behind.vis[i] = 0.25 + 0.75 * rng.unit_f32();
+    }
+    // The reference: the first lane of each chunk faces the light.
+    let mut facing = behind.clone();
+    for i in chunks.clone().step_by(16) {
+        facing.n[i] = (lamps[0].at - facing.p[i]).normalize();
+    }
+    assert_eq!(facing.vis.len(), 2 * len);
+    let scene = scene_at(&plain, eye);
+    for (name, model) in models() {
+        if name.split(' ').nth(1) == Some("None") {
+            continue; // no gate: the lobe may shine from behind
+        }
+        for with_surface in [true, false] {
+            for level in Level::supported() {
+                let a = run(level, &model, &base, &scene, &behind, with_surface, true);
+                let b = run(level, &model, &base, &scene, &facing, with_surface, true);
+                for i in chunks.clone().filter(|i| i % 16 != 0) {
+                    assert_eq!(
+                        a[i].to_array().map(f32::to_bits),
+                        b[i].to_array().map(f32::to_bits),
+                        "{name} at {level} (surface {with_surface}): point {i}: {} vs {}",
+                        a[i],
+                        b[i]
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// The 8-bit entry point is `linear_to_srgb8` of the `f32` one, at every level and at every
 /// chunk boundary (more than 1024 points), with alpha 255.
 #[test]

@@ -1130,6 +1130,10 @@ where
         SpecularGate::Cosine => (zero, zero, s.splat(f32::INFINITY)),
         SpecularGate::None => (s.splat(f32::NEG_INFINITY), one, one),
     };
+    // Where N·L ≤ 0 leaves a light no diffuse and no specular part: every N·L without a
+    // specular lobe, and with one the step and cosine gates' (their threshold, `gate.0`, is 0);
+    // with no gate (−∞) the lobe may shine from behind, and no lane is unlit by N·L.
+    let unlit_below = if k.specular_on { gate.0 } else { zero };
     // One light's terms added to the sums (a macro: its `continue`s are the loop's).
     macro_rules! add_light {
         ($lj:expr, $j:expr) => {{
@@ -1213,13 +1217,16 @@ where
             }
             None => None,
         };
-        // A light shadowed at every point of the chunk (visibility 0 in every lane, as across
-        // a shadow map's dark regions) adds its ambient part alone: its diffuse and specular
-        // products are f·0·w = 0 in every lane the scalar path does not redo (f and w finite),
-        // and the ambient sums below take `att·La` (`Ka⊙La` folded) exactly as here, so the
-        // skip keeps the bits. One test per light and chunk, where there are visibilities.
+        // A light dark at every point of the chunk adds its ambient part alone: shadowed
+        // (visibility 0 in every lane, as across a shadow map's dark regions), or behind every
+        // point's surface (N·L ≤ 0 in every lane, as across a sphere's far side from the light)
+        // where the gate zeroes the lobe there (`unlit_below`). Its diffuse and specular
+        // products are then f·0·w = 0 and f·w·0 = 0 in every lane the scalar path does not
+        // redo (f and w finite; a lane whose N·L is NaN is redone), and the ambient sums below
+        // take `att·La` (`Ka⊙La` folded) exactly as here, so the skip keeps the bits. One test
+        // per light and chunk, where there are visibilities.
         if let Some(vis) = vis {
-            if s.bits(s.gt(vis, zero)) == 0 {
+            if s.bits(s.and(s.gt(vis, zero), s.gt(nl, unlit_below))) == 0 {
                 if k.specular_on && lm.lobe == Lobe::Blinn {
                     // The lanes that Blinn-Phong's cosine form sends to the scalar path (below)
                     // go there still: which path shades a point must not depend on whether its
