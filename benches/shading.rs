@@ -701,13 +701,40 @@ fn gbuffer_4096(c: &mut Criterion) {
     // Every array of the group carved from one buffer at staggered 4 KiB offsets, as
     // `batch_frac`'s are (`Soa`): separate `Vec`s of 16 KiB each start 16 bytes apart within a
     // page, and 4 KiB aliasing between them slows the loop.
+    // The normals again, with runs of 64 points (four chunks) turned away from the light with
+    // probability 0.5, as across a lit sphere's far side: the kernel adds only the ambient part
+    // of a light behind every point of a chunk.
+    let far_side: Vec<Vec3> = {
+        let mut v = nn.clone();
+        for (run, points) in v.chunks_mut(64).enumerate() {
+            if next() < 0.5 {
+                continue;
+            }
+            for (k, normal) in points.iter_mut().enumerate() {
+                let i = run * 64 + k;
+                let away = -(LIGHT_POS - p[i]).normalize();
+                let tilt = Vec3::new(next(), next(), next()) - Vec3::splat(0.5);
+                *normal = (away + tilt - away * tilt.dot(away).min(0.0)).normalize();
+            }
+        }
+        v
+    };
     let stride = n + STAGGER;
-    let mut arena = vec![0.0f32; 28 * stride];
-    // The shadow runs' plane last, after the outputs, so the other planes keep the offsets they
-    // had before it was added (their 4 KiB aliasing with each other, and so their timings).
+    let mut arena = vec![0.0f32; 31 * stride];
+    // The shadow runs' plane and then the far side's normals last, after the outputs, so the
+    // other planes keep the offsets they had before these were added (their 4 KiB aliasing with
+    // each other, and so their timings).
+    let (arena, far_planes) = arena.split_at_mut(28 * stride);
     let (arena, runs_plane) = arena.split_at_mut(27 * stride);
     runs_plane[..n].copy_from_slice(&shadow_runs);
     let shadow_runs_s: &[f32] = &runs_plane[..n];
+    for (c, plane) in far_planes.chunks_mut(stride).enumerate() {
+        for (x, v) in plane.iter_mut().zip(&far_side) {
+            *x = v[c];
+        }
+    }
+    let far_plane = |c: usize| &far_planes[c * stride..c * stride + n];
+    let far_normals = SoaVec3::new(far_plane(0), far_plane(1), far_plane(2));
     let (inputs, outputs) = arena.split_at_mut(13 * stride);
     let columns: [Vec<f32>; 13] = [
         p.iter().map(|v| v.x).collect(),
@@ -747,6 +774,10 @@ fn gbuffer_4096(c: &mut Criterion) {
         })
         .with_visibility(shadow_s);
     let buffer_runs = buffer.with_visibility(shadow_runs_s);
+    let buffer_far = phong::GBuffer {
+        normals: far_normals,
+        ..buffer
+    };
     // The same texels as a renderer keeps them, 8-bit sRGB, decoded in the kernel: a white
     // surface whose ambient and diffuse the texel multiplies.
     let (texel_plane, outputs) = outputs.split_at_mut(stride);
@@ -776,9 +807,15 @@ fn gbuffer_4096(c: &mut Criterion) {
 
     // Agreement before timing: the G-buffer calls against the scalar path point by point.
     let shader = phong::Shader::new(model, &m20, &scene);
-    for (what, buf, vis) in [
-        ("gbuffer", &buffer, shadow_s),
-        ("gbuffer, shadows in runs", &buffer_runs, shadow_runs_s),
+    for (what, buf, vis, normals) in [
+        ("gbuffer", &buffer, shadow_s, &nn),
+        ("gbuffer, shadows in runs", &buffer_runs, shadow_runs_s, &nn),
+        (
+            "gbuffer, far sides in runs",
+            &buffer_far,
+            shadow_s,
+            &far_side,
+        ),
     ] {
         phong::shade_gbuffer(&model, &m20, &scene, buf, SoaRgb::new(r, gr, b));
         for i in 0..n {
@@ -788,7 +825,7 @@ fn gbuffer_4096(c: &mut Criterion) {
                 shininess_s[i],
             );
             let want = shader
-                .shade_surface(p[i], nn[i], &surface, [vis[i]])
+                .shade_surface(p[i], normals[i], &surface, [vis[i]])
                 .total();
             assert_close(what, Vec3::new(r[i], gr[i], b[i]), want, i);
         }
@@ -863,6 +900,19 @@ fn gbuffer_4096(c: &mut Criterion) {
                 &m20,
                 &scene,
                 black_box(&buffer_runs),
+                frame,
+            )
+        })
+    });
+    // `gbuffer_rgba8` with half its normals turned away from the light in runs
+    // (`far_side`): the kernel adds only the ambient part of a light behind a whole chunk.
+    g.bench_function("gbuffer_rgba8_far_side_runs", |bch| {
+        bch.iter(|| {
+            phong::shade_gbuffer_rgba8(
+                black_box(&model),
+                &m20,
+                &scene,
+                black_box(&buffer_far),
                 frame,
             )
         })

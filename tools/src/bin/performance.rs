@@ -958,6 +958,7 @@ fn main() {
     let gb_f32_tinted = mpts("gbuffer_4096", "gbuffer_f32_tinted", 4096, "new");
     let gb_rgba8_tinted = mpts("gbuffer_4096", "gbuffer_rgba8_tinted", 4096, "new");
     let gb_runs = mpts("gbuffer_4096", "gbuffer_rgba8_shadow_runs", 4096, "new");
+    let gb_far = mpts("gbuffer_4096", "gbuffer_rgba8_far_side_runs", 4096, "new");
     let gb_acc = gbuffer_accuracy(&p, &nn, &soa);
     let _ = writeln!(
         md,
@@ -997,10 +998,14 @@ fn main() {
          proportions in runs of 64 points (`gbuffer_rgba8_shadow_runs`), the RGBA8 call shades \
          {} M points/s ({}× `gbuffer_rgba8`). The test per light and chunk costs the rows \
          without dark chunks about 1–2% (interleaved runs on this host when it came in, \
-         2026-11-29).\n\n\
+         2026-11-29). The same skip takes a light that lies behind every point of a chunk \
+         (N·L ≤ 0 in all 16 lanes, as across a lit sphere's far side), where the model's gate \
+         zeroes the lobe behind the surface: with half the runs of 64 points turned away from \
+         the light (`gbuffer_rgba8_far_side_runs`), {} M points/s ({}× `gbuffer_rgba8`).\n\n\
          Why it is slower than one material: the gap is the number of instructions, not their \
          rate (callgrind per kernel instance, DESIGN.md). A per-point surface is ten more \
-         vectors to load and sanitise per chunk; its `Auto` pow is the polynomial in every lane \
+         vectors to load and sanitise per chunk (five here, where `ambient` and `diffuse` are \
+         one slice and the three `specular` planes another, which the kernel loads once); its `Auto` pow is the polynomial in every lane \
          (a point's own exponent, whole or not); it keeps the three light sums apart (three \
          accumulators here, where the light is grey, nine for coloured lights; then their \
          saturation and products with the surface at the end) instead of the one folded sum a \
@@ -1011,7 +1016,10 @@ fn main() {
          operations a chunk at AVX-512 (section above). Eight lanes a step \
          at the AVX2 level, which halves the registers each vector takes, measured about a \
          quarter slower for both calls: the loop is bound by its dependency chains, and two \
-         independent halves per vector are what hides their latency. Every level runs its own \
+         independent halves per vector are what hides their latency. Thirty-two lanes a step \
+         at AVX-512 (two 512-bit registers per vector) gave no gain: there the products and \
+         fused multiply-adds alone take about two thirds of a chunk's cycles (DESIGN.md). \
+         Every level runs its own \
          instructions for these calls (the one kernel source).\n\n\
          Accuracy on the 2²⁰ accuracy points, each with its own random texel, specular strength, \
          shininess in [2, 128] and shadow factor in [0, 1], against the same equation in `f64`: \
@@ -1033,6 +1041,8 @@ fn main() {
         fmt_opt(frac.zip(gb_rgba8_tinted).map(|(a, b)| b / a), 2),
         fmt_opt(gb_runs, 0),
         fmt_opt(gb_rgba8.zip(gb_runs).map(|(a, b)| b / a), 2),
+        fmt_opt(gb_far, 0),
+        fmt_opt(gb_rgba8.zip(gb_far).map(|(a, b)| b / a), 2),
         gb_acc.max_abs,
         gb_acc.mismatch
     );
