@@ -1133,7 +1133,12 @@ where
     // Where N·L ≤ 0 leaves a light no diffuse and no specular part: every N·L without a
     // specular lobe, and with one the step and cosine gates' (their threshold, `gate.0`, is 0);
     // with no gate (−∞) the lobe may shine from behind, and no lane is unlit by N·L.
-    let unlit_below = if k.specular_on { gate.0 } else { zero };
+    // (A scalar, splat at the test: sixteen lanes live across the light loop cost the portable
+    // level's spills about 9 instructions a point.)
+    let unlit_below = match lm.gate {
+        SpecularGate::None if k.specular_on => f32::NEG_INFINITY,
+        _ => 0.0,
+    };
     // One light's terms added to the sums (a macro: its `continue`s are the loop's).
     macro_rules! add_light {
         ($lj:expr, $j:expr) => {{
@@ -1226,7 +1231,7 @@ where
         // take `att·La` (`Ka⊙La` folded) exactly as here, so the skip keeps the bits. One test
         // per light and chunk, where there are visibilities.
         if let Some(vis) = vis {
-            if s.bits(s.and(s.gt(vis, zero), s.gt(nl, unlit_below))) == 0 {
+            if s.bits(s.and(s.gt(vis, zero), s.gt(nl, s.splat(unlit_below)))) == 0 {
                 if k.specular_on && lm.lobe == Lobe::Blinn {
                     // The lanes that Blinn-Phong's cosine form sends to the scalar path (below)
                     // go there still: which path shades a point must not depend on whether its
