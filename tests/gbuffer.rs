@@ -219,6 +219,19 @@ fn run(
     (0..len).map(|i| Vec3::new(r[i], gr[i], b[i])).collect()
 }
 
+/// `a[i]` and `b[i]` are the same bits at every listed point.
+fn assert_same_bits(what: &str, a: &[Vec3], b: &[Vec3], points: impl Iterator<Item = usize>) {
+    for i in points {
+        assert_eq!(
+            a[i].to_array().map(f32::to_bits),
+            b[i].to_array().map(f32::to_bits),
+            "{what}: point {i}: {} vs {}",
+            a[i],
+            b[i]
+        );
+    }
+}
+
 /// The equation tests' inputs from `seed`: `lights` lamps, 203 points around them seen from
 /// `eye`, the base material (with an emission) and the lamps as unshadowed point lights.
 fn setup(seed: u64, lights: usize, eye: Vec3) -> (Vec<Lamp>, Points, Material, Vec<PointLight>) {
@@ -351,15 +364,8 @@ fn a_light_dark_over_whole_chunks_adds_its_ambient_part_alone() {
             for level in Level::supported() {
                 let a = run(level, &model, &base, &scene, &dark, with_surface, true);
                 let b = run(level, &model, &base, &black_scene, &lit, with_surface, true);
-                for i in chunks.clone() {
-                    assert_eq!(
-                        a[i].to_array().map(f32::to_bits),
-                        b[i].to_array().map(f32::to_bits),
-                        "{name} at {level} (surface {with_surface}): point {i}: {} vs {}",
-                        a[i],
-                        b[i]
-                    );
-                }
+                let what = format!("{name} at {level} (surface {with_surface})");
+                assert_same_bits(&what, &a, &b, chunks.clone());
             }
         }
     }
@@ -404,15 +410,8 @@ fn a_light_behind_whole_chunks_adds_its_ambient_part_alone() {
             for level in Level::supported() {
                 let a = run(level, &model, &base, &scene, &behind, with_surface, true);
                 let b = run(level, &model, &base, &scene, &facing, with_surface, true);
-                for i in chunks.clone().filter(|i| i % 16 != 0) {
-                    assert_eq!(
-                        a[i].to_array().map(f32::to_bits),
-                        b[i].to_array().map(f32::to_bits),
-                        "{name} at {level} (surface {with_surface}): point {i}: {} vs {}",
-                        a[i],
-                        b[i]
-                    );
-                }
+                let what = format!("{name} at {level} (surface {with_surface})");
+                assert_same_bits(&what, &a, &b, chunks.clone().filter(|i| i % 16 != 0));
             }
         }
     }
@@ -519,20 +518,13 @@ fn shared_surface_planes_shade_as_separate_copies() {
                 )
                 .unwrap();
                 assert_eq!(shaded, len);
-                out
+                (0..len)
+                    .map(|i| Vec3::new(out[0][i], out[1][i], out[2][i]))
+                    .collect::<Vec<_>>()
             };
             let (a, b) = (shade(&shared), shade(&separate));
-            for i in 0..len {
-                let (x, y) = (
-                    Vec3::new(a[0][i], a[1][i], a[2][i]),
-                    Vec3::new(b[0][i], b[1][i], b[2][i]),
-                );
-                assert_eq!(
-                    x.to_array().map(f32::to_bits),
-                    y.to_array().map(f32::to_bits),
-                    "{name} at {level}: point {i} gave {x} with shared planes, {y} with copies"
-                );
-            }
+            let what = format!("{name} at {level}, shared planes vs copies");
+            assert_same_bits(&what, &a, &b, 0..len);
         }
     }
 }
