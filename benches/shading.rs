@@ -698,9 +698,6 @@ fn gbuffer_4096(c: &mut Criterion) {
         v.truncate(n);
         v
     };
-    // Every array of the group carved from one buffer at staggered 4 KiB offsets, as
-    // `batch_frac`'s are (`Soa`): separate `Vec`s of 16 KiB each start 16 bytes apart within a
-    // page, and 4 KiB aliasing between them slows the loop.
     // The normals again, with runs of 64 points (four chunks) turned away from the light with
     // probability 0.5, as across a lit sphere's far side: the kernel adds only the ambient part
     // of a light behind every point of a chunk.
@@ -719,6 +716,9 @@ fn gbuffer_4096(c: &mut Criterion) {
         }
         v
     };
+    // Every array of the group carved from one buffer at staggered 4 KiB offsets, as
+    // `batch_frac`'s are (`Soa`): separate `Vec`s of 16 KiB each start 16 bytes apart within a
+    // page, and 4 KiB aliasing between them slows the loop.
     let stride = n + STAGGER;
     let mut arena = vec![0.0f32; 31 * stride];
     // The shadow runs' plane and then the far side's normals last, after the outputs, so the

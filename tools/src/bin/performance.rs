@@ -1005,8 +1005,8 @@ fn main() {
          Why it is slower than one material: the gap is the number of instructions, not their \
          rate (callgrind per kernel instance, DESIGN.md). A per-point surface is ten more \
          vectors to load and sanitise per chunk (five here, where `ambient` and `diffuse` are \
-         one slice and the three `specular` planes another, which the kernel loads once); its `Auto` pow is the polynomial in every lane \
-         (a point's own exponent, whole or not); it keeps the three light sums apart (three \
+         one slice and the three `specular` planes another, which the kernel loads once); its \
+         `Auto` pow is the polynomial in every lane (a point's own exponent, whole or not); it keeps the three light sums apart (three \
          accumulators here, where the light is grey, nine for coloured lights; then their \
          saturation and products with the surface at the end) instead of the one folded sum a \
          single material allows; each 16-lane vector is two of AVX2's sixteen \
@@ -1019,8 +1019,7 @@ fn main() {
          independent halves per vector are what hides their latency. Thirty-two lanes a step \
          at AVX-512 (two 512-bit registers per vector) gave no gain: there the products and \
          fused multiply-adds alone take about two thirds of a chunk's cycles (DESIGN.md). \
-         Every level runs its own \
-         instructions for these calls (the one kernel source).\n\n\
+         Every level runs its own instructions for these calls (the one kernel source).\n\n\
          Accuracy on the 2²⁰ accuracy points, each with its own random texel, specular strength, \
          shininess in [2, 128] and shadow factor in [0, 1], against the same equation in `f64`: \
          max abs error {:.1e}, 8-bit mismatch {:.2e}, to compare with the one-material batch \
