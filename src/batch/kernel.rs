@@ -599,30 +599,28 @@ pub(super) fn poly<S: Simd, const N: usize>(s: S, t: S::V, c: &[f32; N]) -> S::V
 }
 
 /// `log2 x` for `x ∈ (0, 1]` (as `pow::log2_poly`): `x = m·2^e` with `m ∈ [√½, √2)`, then
-/// `e + t·P(t)` with `t = m − 1`; subnormal `x` scaled by `2²⁴` first, unless `NORMAL` says
-/// every `x` is a normal number.
+/// `e + t·P(t)` with `t = m − 1`; `x` scaled by `2²⁴` first (and 24 taken from `e`), so that a
+/// subnormal `x` has its exponent in the bits, unless `NORMAL` says every `x` is a normal number.
 #[inline(always)]
 pub(super) fn log2<S: Simd, const N: usize, const NORMAL: bool>(
     s: S,
     x: S::V,
     c: &[f32; N],
 ) -> S::V {
-    let sub = s.lt(x, s.splat(f32::MIN_POSITIVE));
+    // Every `x ≤ 1` times `2²⁴` is a normal number, exactly (subnormals included), with the
+    // same significand: scaling every lane and taking 24 from the exponent gives the bits that
+    // scaling only the subnormal lanes gave, for one product and one integer subtraction
+    // instead of a compare, a product, two selects and a subtraction.
     let xs = if NORMAL {
         x
     } else {
-        s.select(sub, s.mul(x, s.splat(16_777_216.0)), x)
+        s.mul(x, s.splat(16_777_216.0))
     };
     let bits = s.to_bits(xs);
     let e = s.sar23(s.sub_i(bits, s.splat_i(0x3f35_04f3)));
     let m = s.bits_to_f32(s.sub_i(bits, s.shl23(e)));
     let t = s.sub(m, s.splat(1.0));
-    let ef = s.to_f32(e);
-    let ef = if NORMAL {
-        ef
-    } else {
-        s.select(sub, s.sub(ef, s.splat(24.0)), ef)
-    };
+    let ef = s.to_f32(if NORMAL { e } else { s.sub_i(e, s.splat_i(24)) });
     s.mul_add(t, poly(s, t, c), ef)
 }
 
@@ -636,10 +634,13 @@ pub(super) fn exp2<S: Simd, const N: usize, const IN_RANGE: bool>(
     c: &[f32; N],
 ) -> S::V {
     let keep = s.ge(y, s.splat(-100.0));
+    // No `min(y, 0)`: every caller's `y` is `e·log2 x` with `e ≥ 0` and `x ≤ 1`, where `log2`
+    // gives 0 at 1 and a negative value below (its polynomial is positive on its interval), and
+    // any other lane (`x ≤ 0`) is cleared by the caller. The floor keeps `2^r` a normal number.
     let y = if IN_RANGE {
         y
     } else {
-        s.min(s.max(y, s.splat(-100.0)), s.splat(0.0))
+        s.max(y, s.splat(-100.0))
     };
     let big = s.add(y, s.splat(12_582_912.0));
     let r = s.sub(big, s.splat(12_582_912.0));
@@ -1104,6 +1105,9 @@ where
         ViewK::Infinite(d) => (splat3(s, d), one),
     };
     let nv = s.mul(dot(s, n, &v), s.mul(inv_n, inv_v));
+    // Phong's base `2(N·L)(N·V) − L·V` takes `2·N·V`, doubled once here rather than `N·L` once
+    // per light: the same product, exactly (a power of two).
+    let nv2 = s.add(nv, nv);
 
     // Per channel, three sums over the lights, each multiplied by the material's colour once at
     // the end (the saturation rule in the module docs of `batch`):
@@ -1118,17 +1122,18 @@ where
     let mut dif = [zero; 3];
     let mut spe = [zero; 3];
     let lm = &k.lm;
-    // The specular gate as `keep(N·L > t, lobe · clamp(N·L, lo, hi))`, `(t, lo, hi)` per kind:
-    // the step keeps the lobe where N·L > 0 (times exactly 1), the cosine multiplies it by
-    // max(N·L, 0), and no gate keeps it (N·L is finite in every lane the scalar path does not
-    // redo). The instances with per-point inputs (`visibility`, a constant in each) use it: there
+    // The specular gate as `keep(N·L > t, lobe · (a·max(N·L, 0) + b))`, `(t, a, b)` per kind:
+    // the step keeps the lobe where N·L > 0 (times exactly 0·x + 1 = 1), the cosine multiplies
+    // it by max(N·L, 0) (exactly, as 1·x + 0), and no gate keeps it (N·L is finite in every lane
+    // the scalar path does not redo). One fused multiply-add for the factor: a `clamp` took a
+    // `max` and a `min`. The instances with per-point inputs (`visibility`, a constant in each) use it: there
     // a `match` per light made the AVX-512 level pass the gated lobe through the stack, on the
     // loop's critical path (gbuffer_4096 +2–5%). Without inputs the `match` costs no store, and
     // this form's three more operations per light cost 1–2% in levels_4096.
     let gate = match lm.gate {
-        SpecularGate::Step => (zero, one, one),
-        SpecularGate::Cosine => (zero, zero, s.splat(f32::INFINITY)),
-        SpecularGate::None => (s.splat(f32::NEG_INFINITY), one, one),
+        SpecularGate::Step => (zero, zero, one),
+        SpecularGate::Cosine => (zero, one, zero),
+        SpecularGate::None => (s.splat(f32::NEG_INFINITY), zero, one),
     };
     // Where N·L ≤ 0 leaves a light no diffuse and no specular part: every N·L without a
     // specular lobe, and with one the step and cosine gates' (their threshold, `gate.0`, is 0);
@@ -1265,7 +1270,7 @@ where
                     let q = s.min(s.div(s.mul(sum, sum), den), one);
                     s.keep(s.gt(den, s.splat(1e-12)), q)
                 }
-                _ => s.min(s.mul_sub(s.add(nl, nl), nv, lv), one),
+                _ => s.min(s.mul_sub(nl, nv2, lv), one),
             };
             let lobe = match surface {
                 Some(sf) => auto_pow(s, base, sf),
@@ -1273,7 +1278,7 @@ where
             };
             Some(if visibility.is_some() {
                 // The gate without a branch on its kind (see `gate` above).
-                s.keep(s.gt(nl, gate.0), s.mul(lobe, s.min(s.max(nl, gate.1), gate.2)))
+                s.keep(s.gt(nl, gate.0), s.mul(lobe, s.mul_add(nl0, gate.1, gate.2)))
             } else {
                 match lm.gate {
                     SpecularGate::Step => s.keep(s.gt(nl, zero), lobe),
@@ -1371,6 +1376,7 @@ where
 fn finish<S: Simd, const FOLDED: bool>(
     s: S,
     terms: bool,
+    saturate: bool,
     k: &Setup<'_>,
     reflectances: Option<&[[S::V; 3]; 3]>,
     sums: [[S::V; 3]; 3],
@@ -1379,11 +1385,12 @@ fn finish<S: Simd, const FOLDED: bool>(
     let zero = s.splat(0.0);
     let [amb, dif, spe] = sums;
     if FOLDED {
-        return [
-            [s.min(amb[0], max), s.min(amb[1], max), s.min(amb[2], max)],
-            [zero; 3],
-            [zero; 3],
-        ];
+        let total = if saturate {
+            [s.min(amb[0], max), s.min(amb[1], max), s.min(amb[2], max)]
+        } else {
+            amb
+        };
+        return [total, [zero; 3], [zero; 3]];
     }
     let ke = k.material.emission();
     let mut rows = [[zero; 3]; 3];
@@ -1397,16 +1404,21 @@ fn finish<S: Simd, const FOLDED: bool>(
             ),
         };
         // Each sum clamped first, so that a zero colour times it stays 0 (never 0·∞).
-        let ta = s.mul(ka, s.min(amb[c], max));
         let td = s.mul(kd, s.min(dif[c], max));
         let ts = s.mul(ks, s.min(spe[c], max));
         if terms {
+            let ta = s.mul(ka, s.min(amb[c], max));
             (rows[0][c], rows[1][c], rows[2][c]) = (s.min(ta, max), s.min(td, max), s.min(ts, max));
         } else {
-            // The terms are `≥ 0` (or +∞), so their sum reaches `f32::MAX` or +∞ exactly when
-            // it does with each term clamped first, as `Terms::total` sums them: one `min` at
-            // the end gives the same bits.
-            rows[0][c] = s.min(s.add(s.add(s.add(ta, td), ts), s.splat(ke[c])), max);
+            // The emission joins the ambient product in one fused multiply-add: for `Ke = 0`
+            // (most materials) that is the product's own bits, and otherwise the sum in another
+            // order than `Terms::total`'s, one rounding fewer. The terms are `≥ 0` (or +∞), so
+            // their sum reaches `f32::MAX` or +∞ exactly when it does with each term clamped
+            // first, as `Terms::total` sums them: one `min` at the end gives the same bits, and
+            // a sink that clamps below 1 anyway (`saturate` false: 8-bit pixels) skips it.
+            let ta = s.mul_add(ka, s.min(amb[c], max), s.splat(ke[c]));
+            let total = s.add(s.add(ta, td), ts);
+            rows[0][c] = if saturate { s.min(total, max) } else { total };
         }
     }
     rows
@@ -1487,6 +1499,7 @@ fn shade_chunk<
 >(
     s: S,
     terms: bool,
+    saturate: bool,
     k: &Setup<'_>,
     call: &dyn Call,
     lights: &ChunkLights<'_, S>,
@@ -1528,7 +1541,7 @@ where
         None
     };
     (
-        finish::<S, FOLDED>(s, terms, k, reflectances.as_ref(), sums),
+        finish::<S, FOLDED>(s, terms, saturate, k, reflectances.as_ref(), sums),
         bad,
     )
 }
@@ -1637,6 +1650,7 @@ where
             let (rows, bad) = shade_chunk::<S, FOLDED, GREY, CALLS, SURFACE, VISIBILITY>(
                 s,
                 O::TERMS,
+                O::SATURATES,
                 k,
                 call,
                 &lights,

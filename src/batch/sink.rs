@@ -19,6 +19,11 @@ pub(crate) trait Sink {
     /// writes a chunk after shading the next (see `kernel::run_with`).
     const DEFER: bool = false;
 
+    /// Whether the total must be saturated at `f32::MAX` (`Terms::total`'s rule); false where
+    /// [`write`](Self::write) clamps it below 1 anyway (8-bit pixels), so the `min` would change
+    /// no output. The terms are saturated either way.
+    const SATURATES: bool = true;
+
     /// How many points it holds.
     fn len(&self) -> usize;
 
@@ -164,6 +169,8 @@ impl Pixels8<'_> {
 impl Sink for Pixels8<'_> {
     const TERMS: bool = false;
     const DEFER: bool = true;
+    // `srgb8_lanes::levels3` clamps at 1: `f32::MAX` and +∞ both give 255.
+    const SATURATES: bool = false;
     type Part<'b>
         = Pixels8<'b>
     where
@@ -186,7 +193,9 @@ impl Sink for Pixels8<'_> {
 
     #[inline(always)]
     fn write<S: Simd>(&mut self, s: S, i: usize, count: usize, rows: &[[S::V; 3]; 3]) {
-        let [lr, lg, lb] = srgb8_lanes::levels3(s, rows[0]);
+        // The total is `≥ 0` or +∞ in every lane the scalar path does not redo
+        // (`kernel::finish`); a lane it redoes is written again by `put`.
+        let [lr, lg, lb] = srgb8_lanes::levels3::<S, true>(s, rows[0]);
         let (lo, hi, top) = match self {
             Pixels8::Rgba(_) => (lr, lb, 0xff00_0000),
             Pixels8::Xrgb(_) => (lb, lr, 0),

@@ -44,14 +44,23 @@ use crate::colour::srgb8::{BUCKET, LOWEST, SHIFT};
 /// Where the level keeps a table of sixteen in a register, the three channels take the
 /// arithmetic, with one branch for all three on whether a lane of any channel lies too near a
 /// rounding boundary; only a channel with such a lane is redone by the table.
+///
+/// `NONNEG`: the caller's lanes are all `≥ 0` or `+∞` (never NaN): the shaded totals are. The
+/// arithmetic then clamps them at 1 only, since below `LOWEST` its linear segment already gives
+/// level 0 (a `max` fewer per channel); the table, which needs the full clamp, gets it where it
+/// runs.
 #[inline(always)]
-pub(crate) fn levels3<S: Simd>(s: S, [r, g, b]: [S::V; 3]) -> [S::I; 3] {
-    let (r, g, b) = (clamped(s, r), clamped(s, g), clamped(s, b));
+pub(crate) fn levels3<S: Simd, const NONNEG: bool>(s: S, [r, g, b]: [S::V; 3]) -> [S::I; 3] {
     if S::LOOKUP16_IN_REGISTERS {
+        let (ar, ag, ab) = (
+            for_arithmetic::<S, NONNEG>(s, r),
+            for_arithmetic::<S, NONNEG>(s, g),
+            for_arithmetic::<S, NONNEG>(s, b),
+        );
         let ((lr, nr), (lg, ng), (lb, nb)) = (
-            checked_levels(s, r),
-            checked_levels(s, g),
-            checked_levels(s, b),
+            checked_levels(s, ar),
+            checked_levels(s, ag),
+            checked_levels(s, ab),
         );
         let (near_r, near_g, near_b) = (s.bits(nr), s.bits(ng), s.bits(nb));
         if near_r | near_g | near_b == 0 {
@@ -59,12 +68,37 @@ pub(crate) fn levels3<S: Simd>(s: S, [r, g, b]: [S::V; 3]) -> [S::I; 3] {
         }
         // Written out, not a closure: a closure would not inherit the level's target features.
         return [
-            if near_r == 0 { lr } else { table_levels(s, r) },
-            if near_g == 0 { lg } else { table_levels(s, g) },
-            if near_b == 0 { lb } else { table_levels(s, b) },
+            if near_r == 0 {
+                lr
+            } else {
+                table_levels(s, clamped(s, r))
+            },
+            if near_g == 0 {
+                lg
+            } else {
+                table_levels(s, clamped(s, g))
+            },
+            if near_b == 0 {
+                lb
+            } else {
+                table_levels(s, clamped(s, b))
+            },
         ];
     }
+    let (r, g, b) = (clamped(s, r), clamped(s, g), clamped(s, b));
     [table_levels(s, r), table_levels(s, g), table_levels(s, b)]
+}
+
+/// `x` clamped for [`checked_levels`]: [`clamped`], or where every lane is `≥ 0` or `+∞`
+/// (`NONNEG`), `min(x, 1)` alone: `scaled`'s linear segment covers `[0, LOWEST)` too (its
+/// binade table is read there, but not selected).
+#[inline(always)]
+fn for_arithmetic<S: Simd, const NONNEG: bool>(s: S, x: S::V) -> S::V {
+    if NONNEG {
+        s.min(x, s.splat(1.0))
+    } else {
+        clamped(s, x)
+    }
 }
 
 /// `min(max(x, LOWEST), 1)`: every lane in the tables' range, NaN at `LOWEST` (level 0).
@@ -188,7 +222,7 @@ mod tests {
     }
 
     /// Every level's lanes against the scalar encoder on `xs`, and the packed words' bytes.
-    fn agrees<S: Simd>(s: S, xs: &[f32]) {
+    fn agrees<S: Simd, const NONNEG: bool>(s: S, xs: &[f32]) {
         let name = core::any::type_name::<S>();
         for chunk in xs.chunks(W) {
             let mut lanes: Lanes = [0.0; W];
@@ -202,7 +236,8 @@ mod tests {
             for (j, f) in far.iter_mut().enumerate() {
                 *f = crate::srgb_decode(16.0 * j as f32 / 255.0);
             }
-            let [r, g, b] = levels3(s, [s.load(&lanes), s.load(&far), s.load(&rotated)]);
+            let [r, g, b] =
+                levels3::<S, NONNEG>(s, [s.load(&lanes), s.load(&far), s.load(&rotated)]);
             let words = s.store(s.bits_to_f32(pack(s, r, g, b, 0xff00_0000)));
             let want = |x: f32| crate::colour::srgb8::level(x);
             for (k, (got, from)) in [(r, lanes), (g, far), (b, rotated)].into_iter().enumerate() {
@@ -361,9 +396,31 @@ mod tests {
         xs
     }
 
+    fn agrees_any<S: Simd>(s: S, xs: &[f32]) {
+        agrees::<S, false>(s, xs);
+    }
+
+    fn agrees_nonneg<S: Simd>(s: S, xs: &[f32]) {
+        agrees::<S, true>(s, xs);
+    }
+
     /// Every level's lanes against the scalar encoder on [`boundary_sample`].
     #[test]
     fn lanes_are_the_table_encoders_levels() {
-        at_every_level!(agrees, &boundary_sample());
+        at_every_level!(agrees_any, &boundary_sample());
+    }
+
+    /// The same for lanes `≥ 0` or `+∞` (the shaded totals), with the arithmetic's shorter
+    /// clamp: zero, negative zero, subnormals and the values below `LOWEST` included.
+    #[test]
+    fn nonnegative_lanes_are_the_table_encoders_levels() {
+        let mut xs: Vec<f32> = boundary_sample()
+            .into_iter()
+            .filter(|&x| x >= 0.0)
+            .collect();
+        let lowest = f32::from_bits(LOWEST);
+        xs.extend((0..=4096).map(|k| lowest * k as f32 / 4096.0));
+        xs.extend((1..64).map(f32::from_bits));
+        at_every_level!(agrees_nonneg, &xs);
     }
 }
