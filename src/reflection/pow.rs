@@ -590,10 +590,8 @@ fn horner<const N: usize>(t: f32, c: &[f32; N]) -> f32 {
 pub(crate) struct PolyConsts<const L: usize, const E: usize> {
     log2: [f32; L],
     exp2: [f32; E],
-    /// `2^24`, the scale of a subnormal `x`, and its exponent `24`.
+    /// `2^24`, the scale that makes every `x ≤ 1` a normal number.
     two_24: f32,
-    twenty_four: f32,
-    min_positive: f32,
     one: f32,
     /// `1.5·2^23`, for rounding to an integer.
     round: f32,
@@ -606,8 +604,6 @@ impl<const L: usize, const E: usize> PolyConsts<L, E> {
             log2,
             exp2,
             two_24: 16_777_216.0,
-            twenty_four: 24.0,
-            min_positive: f32::MIN_POSITIVE,
             one: 1.0,
             round: 12_582_912.0,
             flush: FLUSH_EXP2,
@@ -632,24 +628,25 @@ pub(crate) const P7_CONSTS: PolyConsts<7, 5> = PolyConsts::new(LOG2_7, EXP2_5);
 /// exactly. For `x = 0` it returns a finite value about −151 (callers select 0).
 #[inline(always)]
 fn log2_poly<const L: usize, const E: usize>(x: f32, k: &PolyConsts<L, E>) -> f32 {
-    let sub = x < k.min_positive;
-    let xs = if sub { x * k.two_24 } else { x }; // exact
-    let bits = xs.to_bits() as i32;
-    // Exponent e such that m = x·2^-e ∈ [√½, √2): offset by the bits of √½.
+    // Every `x ≤ 1` times `2^24` is a normal number, exactly, with the same significand: scaling
+    // every `x` (and taking 24 from the exponent) gives the bits that scaling only the subnormal
+    // ones gave, without the compare and the two selects.
+    let bits = (x * k.two_24).to_bits() as i32;
+    // Exponent e such that m = x·2^(24−e) ∈ [√½, √2): offset by the bits of √½.
     let e = bits.wrapping_sub(0x3f35_04f3) >> 23;
     let m = f32::from_bits(bits.wrapping_sub(e.wrapping_shl(23)) as u32);
     let t = m - k.one;
-    let e = e as f32 - if sub { k.twenty_four } else { 0.0 };
-    e + t * horner(t, &k.log2)
+    e.wrapping_sub(24) as f32 + t * horner(t, &k.log2)
 }
 
-/// `2^y = q·2^r` for `y ∈ [−100, 0]` (callers flush below) as `(q, r)`: `r = round(y)` and
+/// `2^y = q·2^r` for `y ≤ 0` (below −100 the flush bound stands in for it; callers flush) as `(q, r)`: `r = round(y)` and
 /// `q = 2^(y − r)` near 1. Branch-free; `y = 0` gives `(1, 0)` exactly.
 #[inline(always)]
 fn exp2_parts<const L: usize, const E: usize>(y: f32, k: &PolyConsts<L, E>) -> (f32, i32) {
-    // Not `clamp`: `max` also maps NaN to the lower bound.
-    #[allow(clippy::manual_clamp, reason = "max also maps NaN to the lower bound")]
-    let y = y.max(k.flush).min(0.0);
+    // The machine's `max`, which also maps NaN to the lower bound (`f32::max`'s NaN rule costs a
+    // test and a blend per lane where a loop is vectorised). No `min(y, 0)`: `y = s·log2 x` with
+    // `s ≥ 0` and `x ≤ 1` is never above 0 (`log2_poly` gives 0 at 1 and less below).
+    let y = math::max_or(y, k.flush);
     // Round to nearest with the 1.5·2^23 trick (|y| ≤ 100 ≪ 2^22): the integer lands in the low
     // mantissa bits of `big`, so no float-to-int conversion (which does not vectorise) is needed.
     let big = y + k.round;
