@@ -745,6 +745,36 @@ mod tests {
     /// that the fixed ladder covers, and bases across `[0, 1]`.
     const BASES: [f32; 10] = [0.0, 1e-30, 0.05, 0.3, 0.5, 0.7, 0.9, 0.999, 0.99999, 1.0];
 
+    /// The polynomial power at exponent 0 is exactly 1 for every base in `[0, 1]` (zero,
+    /// subnormals and 1 included), as `auto_pow_fixed`'s shortcut for a point's exponent 0 gives;
+    /// and the subnormal bases, scaled with every other by `2^24`, keep their logarithm (`x^0.5`
+    /// of `2^-140` is `2^-70`).
+    #[test]
+    fn the_polynomial_power_at_exponent_zero_is_one() {
+        let tiny = [
+            f32::from_bits(1),
+            f32::from_bits(0x0040_0000),
+            f32::MIN_POSITIVE,
+        ];
+        for &x in BASES.iter().chain(&tiny) {
+            for poly in [Poly::P3, Poly::P5, Poly::P7] {
+                assert_eq!(
+                    poly_pow(poly, x, 0.0).to_bits(),
+                    1.0f32.to_bits(),
+                    "x = {x:e}"
+                );
+            }
+            assert_eq!(
+                auto_pow_fixed::<false>(x, 0, 0.0, &P7_CONSTS).to_bits(),
+                1.0f32.to_bits()
+            );
+        }
+        // 2^-140 (subnormal) and 2^-70.
+        let (x, want) = (f32::from_bits(1 << 9), f32::from_bits((127 - 70) << 23));
+        let half = poly_pow(Poly::P7, x, 0.5);
+        assert!((half / want - 1.0).abs() < 1e-5, "{half:e}");
+    }
+
     /// The trailing-zero shortcut multiplies in the ladder's order (the ladder's first product
     /// into the accumulator is `1 · x^(2^z)`, which is exact), so the two agree bit for bit: for
     /// every power of two, every `n < 4096` and a spread of larger exponents.
