@@ -1012,13 +1012,14 @@ fn main() {
          single material allows; each 16-lane vector is two of AVX2's sixteen \
          registers, so about a fifth of its instructions were moves to and from the stack \
          with nine accumulators (a seventh of `batch_frac`'s); and \
-         the 8-bit encoding adds three table lookups a point at AVX2 and about 75 vector \
+         the 8-bit encoding adds three table lookups a point at AVX2 and about 55 vector \
          operations a chunk at AVX-512 (section above). Eight lanes a step \
          at the AVX2 level, which halves the registers each vector takes, measured about a \
          quarter slower for both calls: the loop is bound by its dependency chains, and two \
          independent halves per vector are what hides their latency. Thirty-two lanes a step \
-         at AVX-512 (two 512-bit registers per vector) gave no gain: there the products and \
-         fused multiply-adds alone take about two thirds of a chunk's cycles (DESIGN.md). \
+         at AVX-512 (two 512-bit registers per vector) gave no gain: there the chunk is bound \
+         by its count of vector operations, about 290 (in a probe, each operation added to a \
+         chunk cost most of a cycle, scalar ones almost nothing: DESIGN.md). \
          Every level runs its own instructions for these calls (the one kernel source).\n\n\
          Accuracy on the 2²⁰ accuracy points, each with its own random texel, specular strength, \
          shininess in [2, 128] and shadow factor in [0, 1], against the same equation in `f64`: \
