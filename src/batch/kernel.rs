@@ -1126,10 +1126,11 @@ where
     // the step keeps the lobe where N·L > 0 (times exactly 0·x + 1 = 1), the cosine multiplies
     // it by max(N·L, 0) (exactly, as 1·x + 0), and no gate keeps it (N·L is finite in every lane
     // the scalar path does not redo). One fused multiply-add for the factor: a `clamp` took a
-    // `max` and a `min`. The instances with per-point inputs (`visibility`, a constant in each) use it: there
-    // a `match` per light made the AVX-512 level pass the gated lobe through the stack, on the
-    // loop's critical path (gbuffer_4096 +2–5%). Without inputs the `match` costs no store, and
-    // this form's three more operations per light cost 1–2% in levels_4096.
+    // `max` and a `min`. The instances with per-point inputs (`visibility`, a constant in each)
+    // use it: there a `match` per light made the AVX-512 level pass the gated lobe through the
+    // stack, on the loop's critical path (gbuffer_4096 +2–5%). Without inputs the `match` costs
+    // no store, and this form's extra operations per light (three, with the `clamp`) cost 1–2%
+    // in levels_4096.
     let gate = match lm.gate {
         SpecularGate::Step => (zero, zero, one),
         SpecularGate::Cosine => (zero, one, zero),
