@@ -84,7 +84,7 @@ pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
 /// rare cases of the functions here, and the whole of [`normalize_full`].
 ///
 /// Scales `v` by the power of two `2^(127−e)` that brings its largest component (`e` from its
-/// biased exponent, see [`scales`]) into `[1, 4)`. The scaling is exact, so the direction is the
+/// biased exponent, see [`scales`]) into `[2, 4)`. The scaling is exact, so the direction is the
 /// correctly scaled one for every finite input (and, where `v·v` neither overflows nor
 /// underflows, the same bits as `v · (1/√(v·v))`); the squared length lies in `[2⁻⁴⁶, 48)`.
 /// Zero, NaN and infinite components give `(0, 0)`.
@@ -104,20 +104,24 @@ fn full_range(v: Vec3) -> (Vec3, f32) {
 }
 
 /// The power of two `2^(127−e)` for the largest magnitude `m` of `v`, and its inverse
-/// `2^(e−127)`, with `e` the biased exponent of `m / 2` with its lowest bit set: `e` is `E − 1` or
-/// `E` for `m`'s own exponent `E ≥ 2`, and 1 for smaller `m`. It brings `m` into `[1, 4)` (into
-/// `[2⁻²³, 2)` for a zero or subnormal `m`), and both are normal powers of two for every finite
-/// `m`. Where `m` is infinite or NaN the scale is `−∞`, so `m · scale` is infinite or NaN.
+/// `2^(e−127)`, with `e = max(E, 2) − 1` for `m`'s biased exponent `E`: it brings `m` into
+/// `[2, 4)` (into `[2⁻²³, 2)` for `m < 2⁻¹²⁵`, zero and subnormals included), and both are normal
+/// powers of two for every finite `m`. Where a component is infinite the scale is 0 (so
+/// `m · scale` is NaN); a NaN component is skipped by the `max`es and stays NaN in `v · scale`.
 ///
-/// Four instructions after `m`, none a compare or a select (which SSE2 would need for an integer
-/// clamp): the halving, an `and` and an `or` for `e`, and one integer subtraction. Halving `m`
-/// keeps `e ≤ 253` and setting the bit keeps `e ≥ 1`, so the scale's exponent field lies in
-/// `[1, 253]` without a clamp.
+/// Short, because every normalisation's chain of dependent operations starts here, and in the
+/// one-light shader's vectorised loop that chain is what a point costs: the `max`es are IEEE
+/// `maxNum` ([`f32::max`]) from a constant floor, which compiles to one `maxps` each even where the
+/// components are loaded from memory (a compare-and-select of two values that may be NaN became a
+/// compare and a blend per `max` in SSE2), and `e` is integer arithmetic on `m`'s bits (no
+/// multiplication): subtracting one from the exponent field cannot borrow past it, since the floor
+/// `2⁻¹²⁵` keeps `E ≥ 2`.
 #[inline(always)]
 fn scales(v: Vec3) -> (f32, f32) {
+    const FLOOR: f32 = 2.0 * f32::MIN_POSITIVE; // 2⁻¹²⁵, biased exponent 2
     let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
-    let m = math::max_or(math::max_or(ax, ay), az);
-    let e_bits = ((0.5 * m).to_bits() & 0x7f80_0000) | 0x0080_0000;
+    let m = az.max(ay.max(ax.max(FLOOR)));
+    let e_bits = m.to_bits().wrapping_sub(0x0080_0000) & 0x7f80_0000;
     (
         f32::from_bits(0x7f00_0000_u32.wrapping_sub(e_bits)),
         f32::from_bits(e_bits),
