@@ -555,22 +555,31 @@ pub(crate) fn auto_split_per_point(e: f32) -> (u32, f32) {
 #[inline(always)]
 fn horner<const N: usize>(t: f32, c: &[f32; N]) -> f32 {
     const { assert!(N <= 8, "horner: at most 8 coefficients") };
-    // Estrin's scheme: pairs c[k] + c[k+1]·t, then combined with t², t⁴: depth log2 N.
+    estrin(t, c)
+}
+
+/// `Σ c[k] t^k` by Estrin's scheme for a slice of at most 8 coefficients whose length is known
+/// once inlined: pairs `c[k] + c[k+1]·t`, then combined with `t²`, `t⁴`: depth `log2` of the
+/// length.
+#[inline(always)]
+fn estrin(t: f32, c: &[f32]) -> f32 {
+    let n = c.len();
+    debug_assert!(n <= 8, "estrin: at most 8 coefficients");
     // A missing odd coefficient leaves its pair `c[k]` alone rather than adding `0·t` (which
     // the compiler must keep: it is −0 or NaN for some `t`), and a missing pair adds nothing.
     let pair = |k: usize| {
-        if k + 1 < N { c[k] + c[k + 1] * t } else { c[k] }
+        if k + 1 < n { c[k] + c[k + 1] * t } else { c[k] }
     };
     let t2 = t * t;
-    let lo = if N > 2 {
+    let lo = if n > 2 {
         pair(0) + pair(2) * t2
     } else {
         pair(0)
     };
-    if N <= 4 {
+    if n <= 4 {
         return lo;
     }
-    let hi = if N > 6 {
+    let hi = if n > 6 {
         pair(4) + pair(6) * t2
     } else {
         pair(4)
@@ -653,7 +662,13 @@ fn exp2_parts<const L: usize, const E: usize>(y: f32, k: &PolyConsts<L, E>) -> (
     let r = big - k.round;
     let ri = (big.to_bits() as i32).wrapping_sub(0x4b40_0000);
     let f = y - r;
-    (k.one + f * horner(f, &k.exp2), ri)
+    // `1 + f·R(f)` as one polynomial with the 1 as its constant coefficient: Estrin's pairs
+    // start with `1 + c₀·f`, which takes two operations (a product and a sum) off the chain
+    // from `f` to `q` that `1 + f·R(f)` added after `R`.
+    let mut c = [0.0f32; 8];
+    c[0] = k.one;
+    c[1..=E].copy_from_slice(&k.exp2);
+    (estrin(f, &c[..=E]), ri)
 }
 
 /// `x^s` by `exp2(s·log2 x)` for `x ∈ (0, 1]`; 0 where the result is below `2^-100`.
@@ -671,7 +686,10 @@ pub(crate) fn poly_pow(poly: Poly, x: f32, s: f32) -> f32 {
 fn poly_pow_with<const L: usize, const E: usize>(x: f32, s: f32, k: &PolyConsts<L, E>) -> f32 {
     let y = s * log2_poly(x, k);
     let (q, ri) = exp2_parts(y, k);
-    let p = q * f32::from_bits((ri.wrapping_add(127) as u32) << 23);
+    // `q·2^r` by adding `r` to `q`'s exponent field: exact, as the product is, since
+    // `q ∈ (0.7, 1.5)` and `r ≥ −100` keep the result normal, and one integer addition where the
+    // product waited for the scale's bits and then multiplied.
+    let p = f32::from_bits(q.to_bits().wrapping_add((ri as u32) << 23));
     if y >= k.flush { p } else { 0.0 }
 }
 
