@@ -113,18 +113,22 @@ fn full_range(v: Vec3) -> (Vec3, f32) {
 /// one-light shader's vectorised loop that chain is what a point costs: the `max`es are IEEE
 /// `maxNum` ([`f32::max`]) from a constant floor, which compiles to one `maxps` each even where the
 /// components are loaded from memory (a compare-and-select of two values that may be NaN became a
-/// compare and a blend per `max` in SSE2), and `e` is integer arithmetic on `m`'s bits (no
-/// multiplication): subtracting one from the exponent field cannot borrow past it, since the floor
-/// `2⁻¹²⁵` keeps `E ≥ 2`.
+/// compare and a blend per `max` in SSE2), and the scale's exponent field `254 − e = 255 − E` is
+/// the bitwise complement of `m`'s, one `andnps` with the exponent mask (it was a halving, an
+/// `and`, an `or` and an integer subtraction). The inverse subtracts one from `m`'s exponent
+/// field, which cannot borrow past it, since the floor `2⁻¹²⁵` keeps `E ≥ 2`; it is off that
+/// chain (only a distance reads it).
 #[inline(always)]
 fn scales(v: Vec3) -> (f32, f32) {
     const FLOOR: f32 = 2.0 * f32::MIN_POSITIVE; // 2⁻¹²⁵, biased exponent 2
     let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
     let m = az.max(ay.max(ax.max(FLOOR)));
-    let e_bits = m.to_bits().wrapping_sub(0x0080_0000) & 0x7f80_0000;
+    let bits = m.to_bits();
+    // The scale's field `254 − e = 255 − E` is the complement of `E`: one `andnps` of `m`'s bits
+    // with the exponent mask, in the floating-point domain.
     (
-        f32::from_bits(0x7f00_0000_u32.wrapping_sub(e_bits)),
-        f32::from_bits(e_bits),
+        f32::from_bits(!bits & 0x7f80_0000),
+        f32::from_bits(bits.wrapping_sub(0x0080_0000) & 0x7f80_0000),
     )
 }
 
