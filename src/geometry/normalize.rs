@@ -120,9 +120,30 @@ fn full_range(v: Vec3) -> (Vec3, f32) {
 /// chain (only a distance reads it).
 #[inline(always)]
 fn scales(v: Vec3) -> (f32, f32) {
+    scales_of_largest(largest_magnitude(v))
+}
+
+/// [`scales`] of the saturated difference `sub_saturating(to, from)`, from the unsaturated one
+/// `d = to − from`: its largest magnitude saturated at `f32::MAX` is the saturated difference's,
+/// and this order puts the saturation after the `max`es, where it waits for one operand rather
+/// than for the difference's two clamps (the chain from the difference to the scale is one
+/// operation shorter).
+#[inline(always)]
+fn scales_of_difference(d: Vec3) -> (f32, f32) {
+    scales_of_largest(largest_magnitude(d).min(math::MAX))
+}
+
+/// `max(|x|, |y|, |z|, 2⁻¹²⁵)`: NaN components skipped, `+∞` kept.
+#[inline(always)]
+fn largest_magnitude(v: Vec3) -> f32 {
     const FLOOR: f32 = 2.0 * f32::MIN_POSITIVE; // 2⁻¹²⁵, biased exponent 2
     let (ax, ay, az) = (math::abs(v.x), math::abs(v.y), math::abs(v.z));
-    let m = az.max(ay.max(ax.max(FLOOR)));
+    az.max(ay.max(ax.max(FLOOR)))
+}
+
+/// [`scales`] for the largest magnitude `m ≥ 2⁻¹²⁵`.
+#[inline(always)]
+fn scales_of_largest(m: f32) -> (f32, f32) {
     let bits = m.to_bits();
     // The scale's field `254 − e = 255 − E` is the complement of `E`: one `andnps` of `m`'s bits
     // with the exponent mask, in the floating-point domain.
@@ -142,7 +163,22 @@ fn scales(v: Vec3) -> (f32, f32) {
 #[inline(always)]
 pub(crate) fn normalize_full(v: Vec3) -> Vec3 {
     let (scale, _) = scales(v);
-    let w = v * scale;
+    unit_of_scaled(v * scale)
+}
+
+/// [`normalize_full`] of `sub_saturating(to, from)` for finite points, the same bits, with the
+/// shorter chain of [`scales_of_difference`].
+#[must_use]
+#[inline(always)]
+pub(crate) fn normalize_full_between(to: Vec3, from: Vec3) -> Vec3 {
+    let d = to - from;
+    let (scale, _) = scales_of_difference(d);
+    unit_of_scaled(saturate(d) * scale)
+}
+
+/// `w / ‖w‖` for a `w` scaled by [`scales`], and 0 for `w = 0`.
+#[inline(always)]
+fn unit_of_scaled(w: Vec3) -> Vec3 {
     // √(w·w) ≥ 2⁻²³ for any non-zero finite v; the floor only keeps 0 · (1/0) out for v = 0.
     w * (1.0 / math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE))
 }
@@ -152,8 +188,9 @@ pub(crate) fn normalize_full(v: Vec3) -> Vec3 {
 /// underflows.
 #[inline(always)]
 pub(crate) fn direction_and_distance_full(to: Vec3, from: Vec3) -> (Vec3, f32) {
-    let v = sub_saturating(to, from);
-    let (scale, unscale) = scales(v);
+    let d = to - from;
+    let v = saturate(d);
+    let (scale, unscale) = scales_of_difference(d);
     let w = v * scale;
     let root = math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE);
     (w * (1.0 / root), math::min_or(root * unscale, math::MAX))
@@ -221,7 +258,12 @@ fn length_rare(v: Vec3) -> f32 {
 /// the direction stays finite. The direction of a saturated difference is approximate.
 #[inline(always)]
 pub(crate) fn sub_saturating(a: Vec3, b: Vec3) -> Vec3 {
-    let d = a - b;
+    saturate(a - b)
+}
+
+/// Each component saturated to `[−f32::MAX, f32::MAX]`.
+#[inline(always)]
+fn saturate(d: Vec3) -> Vec3 {
     d.max(Vec3::splat(-math::MAX)).min(Vec3::splat(math::MAX))
 }
 

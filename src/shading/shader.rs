@@ -8,7 +8,9 @@ use crate::lobe_pow::{self, LobePow, lobe_power, lobe_power_selected};
 use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
-use crate::normalize::{direction_between, normalize_flagged, normalize_full, sub_saturating};
+use crate::normalize::{
+    direction_between, normalize_flagged, normalize_full, normalize_full_between,
+};
 use crate::normalize_or_zero;
 use crate::pow::{
     P7_CONSTS, Poly, PolyConsts, PowPlan, PowStrategy, auto_split, auto_split_per_point,
@@ -554,7 +556,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let phong = M::HAS_SPECULAR && r.lobe == Lobe::Phong;
         let n = normalize_full(normal);
         let v = match self.viewer {
-            Viewer::At(eye) => normalize_full(sub_saturating(eye, position)),
+            Viewer::At(eye) => normalize_full_between(eye, position),
             Viewer::Infinite(dir) => dir,
         };
         let sample = one.flat.sample(position);
