@@ -590,3 +590,48 @@ fn an_overflowing_light_sum_under_a_tiny_reflectance_saturates() {
         "{t:?}"
     );
 }
+
+/// A light whose factor saturates at `f32::MAX` under a diffuse colour small enough that the light
+/// sums' bounds stay below `f32::MAX / 4`: the sums cannot overflow, but the scalar weight
+/// `f·vis·N·L` can, where `N·L` of two normalised vectors rounds above 1. The prepared shader
+/// skips its saturating `min`s only when neither can (`Shader`'s `safe` bounds the weights too),
+/// so the one-light form stays the light loop, bit for bit, and finite.
+#[test]
+fn a_saturated_factor_under_a_dim_colour_keeps_its_weight_saturated() {
+    let colors = LightColors::try_new(Vec3::ZERO, Vec3::splat(0.1), Vec3::splat(0.1)).unwrap();
+    let m = Material::try_new(Vec3::ZERO, Vec3::splat(0.5), Vec3::splat(0.5), 8.0).unwrap();
+    let p = Vec3::new(0.25, -0.5, 1.0);
+    let mut above_one = 0;
+    for i in 1..400 {
+        let t = i as f32 * 0.173;
+        let d = Vec3::new(t.sin() + 1.5, (t * 1.7).cos() + 1.5, (t * 0.3).sin() + 1.5);
+        // 1e38 / (1e-3)² saturates: the factor at the point is f32::MAX.
+        let at = p + d * 1e-3;
+        let lamp = PointLight::try_new(at, Attenuation::try_inverse_square(1e38).unwrap(), colors)
+            .unwrap();
+        let (n, l) = (
+            phong::normalize_or_zero(d),
+            phong::normalize_or_zero(at - p),
+        );
+        if n.dot(l) > 1.0 {
+            above_one += 1;
+        }
+        let lights = [lamp];
+        let scene = Scene {
+            lights: &lights,
+            ambient: Vec3::ZERO,
+            viewer: Viewer::At(p + Vec3::Z),
+        };
+        for model in [
+            Model::from(Phong::default()),
+            Model::from(BlinnPhong::default()),
+        ] {
+            let shader = Shader::new(model, &m, &scene);
+            let t = shader.shade(p, d);
+            assert_eq!(t, shader.one_at_a_time().shade(p, d), "{model:?} d = {d}");
+            assert!(t.total().is_finite(), "{model:?} d = {d}: {t:?}");
+        }
+    }
+    // The case the test is about occurred.
+    assert!(above_one > 0, "no direction had N·L > 1");
+}
