@@ -593,9 +593,10 @@ fn an_overflowing_light_sum_under_a_tiny_reflectance_saturates() {
 
 /// A light whose factor saturates at `f32::MAX` under a diffuse colour small enough that the light
 /// sums' bounds stay below `f32::MAX / 4`: the sums cannot overflow, but the scalar weight
-/// `f·vis·N·L` can, where `N·L` of two normalised vectors rounds above 1. The prepared shader
-/// skips its saturating `min`s only when neither can (`Shader`'s `safe` bounds the weights too),
-/// so the one-light form stays the light loop, bit for bit, and finite.
+/// `f·vis·N·L` can, where `N·L` of two normalised vectors rounds above 1. The one-light form
+/// keeps the weights' saturating `min`s even where the sums' bounds let it skip the products'
+/// (a guard for any future skip of those `min`s: the test fails with +∞ without them), so it
+/// stays the light loop, bit for bit, and finite.
 #[test]
 fn a_saturated_factor_under_a_dim_colour_keeps_its_weight_saturated() {
     let colors = LightColors::try_new(Vec3::ZERO, Vec3::splat(0.1), Vec3::splat(0.1)).unwrap();

@@ -100,8 +100,6 @@ pub struct Shader<'a, M, L> {
     /// Upper bounds of the three light sums over every point: `Ia + Σ fmax·La`, `Σ fmax·Ld`,
     /// `Σ fmax·Ls` (`fmax` = [`LightSource::max_factor`]), saturated at `f32::MAX`.
     bounds: [Vec3; 3],
-    /// The largest `fmax` of any light (0 without lights, `+∞` where nothing was bounded).
-    factor_bound: f32,
     prepared: Prepared,
     /// The scene's one light, when it has exactly one and it is a directional or point light, in
     /// the form [`Shader::one_light`] evaluates with no branch.
@@ -167,20 +165,18 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             Viewer::Infinite(dir) => Viewer::Infinite(normalize_or_zero(dir)),
         };
         let ambient_light = sanitize_colour(scene.ambient);
-        let (bounds, factor_bound) = if bound {
+        let bounds = if bound {
             let mut b = [ambient_light, Vec3::ZERO, Vec3::ZERO];
-            let mut most = 0.0f32;
             for light in scene.lights {
                 let f = light.max_factor();
                 let c = light.colors();
                 b[0] += c.ambient() * f;
                 b[1] += c.diffuse() * f;
                 b[2] += c.specular() * f;
-                most = most.max(f);
             }
-            (b, most)
+            b
         } else {
-            ([Vec3::INFINITY; 3], f32::INFINITY)
+            [Vec3::INFINITY; 3]
         };
         let mut shader = Shader {
             model,
@@ -190,7 +186,6 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             viewer,
             emission: material.emission(),
             bounds: bounds.map(|b| b.min(Vec3::splat(math::MAX))),
-            factor_bound,
             // Only worth its preparation over many points (and `for_one_point` shades one).
             one: match scene.lights {
                 [light] if bound => light.flat().map(|flat| OneLight {
@@ -227,11 +222,10 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
 
     /// The per-surface constants for sanitised reflectances and shininess `s ≥ 0`.
     ///
-    /// `safe` holds when `A`, `d·D`, `k·S`, `Ka·A + Kd·d·D + Ks·k·S + Ke` (per channel), `d·F` and
-    /// `k·F` are all below `f32::MAX / 4`, with `A, D, S` the light sums' bounds, `F` the largest
-    /// light factor, `d` the diffuse scale and `k` the specular scale (normalisation) of a crate
-    /// model: every lobe and gate is at most 1 plus a few ulps, and each visibility at most 1, so
-    /// no weight, sum or product can then overflow, and the saturating `min`s are skipped. A
+    /// `safe` holds when `A`, `d·D`, `k·S` and `Ka·A + Kd·d·D + Ks·k·S + Ke` are all below
+    /// `f32::MAX / 4` per channel, with `A, D, S` the light sums' bounds, `d` the diffuse scale and `k` the specular scale (normalisation)
+    /// of a crate model: every lobe and gate is at most 1 plus a few ulps, and each visibility at
+    /// most 1, so no sum or product can then overflow, and the saturating `min`s are skipped. A
     /// product that overflows here is `+∞`, which fails the test: the check itself cannot
     /// misjudge. Models from outside the crate and per-point surfaces are never `safe`.
     #[inline(always)]
@@ -244,13 +238,7 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                 // The sums themselves (before the reflectances scale them), then the total.
                 let sums = scaled_sums(r, &self.bounds, specular.scale);
                 let most = ka * sums[0] + kd * sums[1] + ks * sums[2] + self.emission;
-                // The scalar weights `f·vis·wd` and `f·vis·ws`, before the colours scale them.
-                let weights = Vec3::new(
-                    r.diffuse(1.0) * self.factor_bound,
-                    specular.scale * self.factor_bound,
-                    0.0,
-                );
-                sums.into_iter().all(below_quarter) && below_quarter(most) && below_quarter(weights)
+                sums.into_iter().all(below_quarter) && below_quarter(most)
             });
         Prepared {
             ka,
@@ -622,20 +610,19 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             0.0
         };
         let ambient = self.ambient_light + one.ambient * f;
+        let diffuse = one.diffuse * math::min_or(fv * wd, math::MAX);
+        let specular = one.specular * math::min_or(fv * ws, math::MAX);
         let (ka, kd, ks) = (surface.ka, surface.kd, surface.ks);
         if SHARED && surface.safe {
-            // Nothing reaches f32::MAX (see `prepare`), so every `min` below would change
-            // nothing, the weights' included (one operation less on the chains that end here).
+            // Nothing reaches f32::MAX (see `prepare`), so the `min`s below would change nothing.
             // `safe` is the same at every point: in a vectorised loop this is a branch.
             return Terms {
                 ambient: ka * ambient,
-                diffuse: kd * (one.diffuse * (fv * wd)),
-                specular: ks * (one.specular * (fv * ws)),
+                diffuse: kd * diffuse,
+                specular: ks * specular,
                 emission: self.emission,
             };
         }
-        let diffuse = one.diffuse * math::min_or(fv * wd, math::MAX);
-        let specular = one.specular * math::min_or(fv * ws, math::MAX);
         // Otherwise (a per-point surface, whose test would cost more at every point than the
         // `min`s, or sums that may reach f32::MAX) saturated; `min` leaves every value below
         // f32::MAX as it is, so the bits are the light loop's either way. Per component with the
