@@ -885,12 +885,9 @@ fn plan_for(resolved: Option<ResolvedModel>, s: f32, shared: bool) -> SpecularPl
     match resolved {
         // `Auto`: for one material's exponent (`shared`), squaring for a whole exponent and the
         // degree-7 polynomial otherwise (its meaning everywhere in the crate); for a point's own
-        // exponent, the polynomial (see `auto_split_per_point`). Decided inline, without
-        // `at_shininess`'s general plan: `shade_surface` runs it per point, as one `Split` plan
-        // whose evaluation has no branch on the shininess. A whole shared exponent is a
-        // `Squaring` plan, the same ladder with the same bits: its arm of the shading code's
-        // match on the plan has no polynomial beside the ladder to select away (Blinn-Phong's
-        // `scalar` probe at s = 32: 41.8 → 41.1 cycles a point; Phong's unchanged).
+        // exponent, the polynomial (see `auto_split_per_point`). One `Split` plan whose
+        // evaluation has no branch on the shininess, decided inline, without `at_shininess`'s
+        // general plan: `shade_surface` runs it per point.
         Some(r) if r.pow == PowStrategy::Auto => {
             // Both callers pass a sanitised shininess: a material's own, or a point's as
             // `shade_surface` clamps it. Clamping again here and in `auto_split_per_point` cost
@@ -909,14 +906,10 @@ fn plan_for(resolved: Option<ResolvedModel>, s: f32, shared: bool) -> SpecularPl
             };
             SpecularPlan {
                 scale,
-                plan: if shared && frac == 0.0 {
-                    PowPlan::Squaring { n }
-                } else {
-                    PowPlan::Split {
-                        n,
-                        frac,
-                        poly: Poly::P7,
-                    }
+                plan: PowPlan::Split {
+                    n,
+                    frac,
+                    poly: Poly::P7,
                 },
             }
         }
