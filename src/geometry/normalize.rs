@@ -171,9 +171,16 @@ pub(crate) fn normalize_full(v: Vec3) -> Vec3 {
 #[must_use]
 #[inline(always)]
 pub(crate) fn normalize_full_between(to: Vec3, from: Vec3) -> Vec3 {
+    unit_of_scaled(scaled_difference(to, from).0)
+}
+
+/// `sub_saturating(to, from)` times its [`scales`] scale, and the inverse scale, by
+/// [`scales_of_difference`].
+#[inline(always)]
+fn scaled_difference(to: Vec3, from: Vec3) -> (Vec3, f32) {
     let d = to - from;
-    let (scale, _) = scales_of_difference(d);
-    unit_of_scaled(saturate(d) * scale)
+    let (scale, unscale) = scales_of_difference(d);
+    (saturate(d) * scale, unscale)
 }
 
 /// `w / ‖w‖` for a `w` scaled by [`scales`], and 0 for `w = 0`.
@@ -188,10 +195,7 @@ fn unit_of_scaled(w: Vec3) -> Vec3 {
 /// underflows.
 #[inline(always)]
 pub(crate) fn direction_and_distance_full(to: Vec3, from: Vec3) -> (Vec3, f32) {
-    let d = to - from;
-    let v = saturate(d);
-    let (scale, unscale) = scales_of_difference(d);
-    let w = v * scale;
+    let (w, unscale) = scaled_difference(to, from);
     let root = math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE);
     (w * (1.0 / root), math::min_or(root * unscale, math::MAX))
 }
