@@ -785,16 +785,21 @@ fn main() {
          `powf` calls): the one-light `Shader` path is straight-line code with no call, loop or \
          data branch (see `Shader`'s docs), and for one material a whole shininess skips the \
          `Poly7` form of `Auto` (the select on the material's exponent becomes a branch). What \
-         remains is work the baseline does not do, each item measured on this machine by taking \
-         it out of a probe loop: full-range normalisation by power-of-two scaling, where the \
-         baseline's `normalize` fails on huge and tiny vectors (about 30% for N, V and L \
-         together, the decisive part: DESIGN.md has the probe); the squaring ladder of fixed length, whose 22 selects on the exponent become 22 \
-         branches (about 4%); the evaluation of an overflowing attenuation denominator on \
-         operands scaled into range, which a vectorised loop computes beside the common one for \
-         every point (in `f64` until 2026-11-27, 6% of the instructions; now in `f32`); the \
-         masks for missing directions, the visibility clamp, the gate and the saturating \
-         subtraction (1–4% each). Already taken out of the common path, as branches on what is \
-         the same at every point: the window and the second division of the forms that have \
+         remains is bound by its chains of dependent operations, not by its count of operations: \
+         one iteration of the vectorised loop (four points, SSE2) runs about 370 instructions, \
+         more than the processor's window of instructions in flight holds, so successive \
+         iterations barely overlap and a cycle taken off the longest chain is a quarter of a cycle \
+         a point. The work the baseline does not do, each item measured on this machine by taking \
+         it out of a probe loop (DESIGN.md has the probes): full-range normalisation by \
+         power-of-two scaling, where the baseline's `normalize` fails on huge and tiny vectors \
+         (6.4 cycles a point for N, V and L together, before 2026-11-29 shortened its chain); the \
+         squaring ladder of fixed length, whose tests on the exponent are branches (five plain \
+         squarings were 2.2 cycles faster before the ladder's first product left the chain, \
+         which took 0.6); the evaluation of an overflowing attenuation denominator on operands \
+         scaled into range, which a vectorised loop computes beside the common one for every \
+         point (about 1.2); the masks for missing directions, the visibility clamp, the gate and \
+         the saturating subtraction. Already taken out of the common path, as branches on what \
+         is the same at every point: the window and the second division of the forms that have \
          them, the saturation where the material's sums cannot reach `f32::MAX`, and the \
          zero-vector masks a step or cosine gate makes redundant (0.70× → 0.80× together). Tried \
          and measured slower or wrong: uniform selects on the falloff's form, or choosing between \
@@ -809,7 +814,12 @@ fn main() {
          prepares is written for a loop the compiler vectorises, and one point at a time it costs \
          about four times `naive_glam`: its full-range normalisations and fixed-length squaring \
          ladder are branch-free, which lengthens each point's chain of dependent operations, and \
-         a lone point has no neighbours to overlap with. No single form found serves both shapes \
+         a lone point has no neighbours to overlap with. In this row it also waits for its \
+         input: `black_box` writes each point to the stack as an 8-byte and a 4-byte store, \
+         and since 2026-11-29's shorter normalisations the one-light form reads it back with an \
+         8-byte load that straddles both, which the processor cannot forward from the stores \
+         (in a probe, 158 cycles a point; the same loop reading each point through a reference, \
+         103; the code before, with loads that matched the stores, 118). No single form found serves both shapes \
          (the range-tested normalisations of the light loop, tried in the one-light form, took \
          `scalar` from 0.87× to 0.69× in a probe), so there are two: `Shader::one_at_a_time` \
          (and `with_viewer`, a ray tracer's call per hit) takes the light loop, whose rare cases \
