@@ -225,10 +225,10 @@ impl<'a> GBuffer<'a> {
             "GBuffer: visibility needs {lights} × {stride} values (one plane per light)"
         );
         let (ka, kd, ks) = (material.ambient(), material.diffuse(), material.specular());
-        let inputs = PointInputs {
-            surface: self.surface.map(|s| s.slices()),
-            albedo: self.albedo,
-            base: [
+        let inputs = PointInputs::new(
+            self.surface.map(|s| s.slices()),
+            self.albedo,
+            [
                 ka.x,
                 ka.y,
                 ka.z,
@@ -240,8 +240,8 @@ impl<'a> GBuffer<'a> {
                 ks.z,
                 material.shininess(),
             ],
-            visibility: self.visibility.map(|v| (v, stride)),
-        };
+            self.visibility.map(|v| (v, stride)),
+        );
         (inputs, if short { 0 } else { n })
     }
 }
