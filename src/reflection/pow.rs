@@ -456,6 +456,7 @@ fn squarings(x: f32, k: u32) -> f32 {
 /// 35.0 → 34.4 cycles a point).
 #[inline(always)]
 pub(crate) fn pow_u32_fixed(x: f32, n: u32) -> f32 {
+    // `& 31`: `n = 0` has 32 trailing zeros; it takes no squaring and gives 1 at the end.
     let z = n.trailing_zeros() & 31;
     let mut base = squarings(x, z);
     let mut acc = base;
@@ -666,8 +667,8 @@ fn exp2_parts<const L: usize, const E: usize>(y: f32, k: &PolyConsts<L, E>) -> (
     exp2_parts_unfloored(math::max_or(y, k.flush), k)
 }
 
-/// [`exp2_parts`] without the floor: for `y ≥ −100` the same `(q, r)`, and for a lower (or
-/// infinite) `y` values the caller discards by a select on `y` alone, never by arithmetic
+/// [`exp2_parts`] without the floor: for `y ≥ −100` the same `(q, r)`; for a lower or infinite
+/// `y`, values that the caller must discard by a select on `y` alone, never use in arithmetic
 /// (`q` may then be NaN: `−∞ − (−∞)`). Two cycles off the chain from the base to the power,
 /// which in a loop over points is what a point costs.
 #[inline(always)]
