@@ -824,12 +824,17 @@ fn sliver_study_meets_the_10x_target_and_one_ulp() {
 #[test]
 fn shading_matches_the_reference_in_8bit_srgb() {
     // Full run: typical 0.0010 % of channels differ (6 of 600 000), hard 0.0007 %, by 1 level.
-    for (seed, hard) in [(50, false), (51, true)] {
-        let s = measure::measure_shading(4000, seed, hard);
+    for (seed, hard, per_point) in [
+        (50, false, false),
+        (51, true, false),
+        (50, false, true),
+        (51, true, true),
+    ] {
+        let s = measure::measure_shading(4000, seed, hard, per_point);
         assert_eq!(s.stats.non_finite, 0, "hard = {hard}: non-finite shading");
         assert!(
             s.fraction() <= 1e-3,
-            "hard = {hard}: {} % of 8-bit channels differ",
+            "hard = {hard}, per point = {per_point}: {} % of 8-bit channels differ",
             100.0 * s.fraction()
         );
         assert!(

@@ -22,6 +22,20 @@ fn in_common_range(l2: f32) -> bool {
     l2.to_bits().wrapping_sub(LO.to_bits()) <= HI.to_bits() - LO.to_bits()
 }
 
+/// The narrower common range of the normalisations that also return their vector for Phong's
+/// squared base ([`Scaled`]): squared lengths in `[2⁻³¹, 2³¹]`. Inside it the vector is returned
+/// as it is, and the base's products of three such squared lengths and their squares (up to
+/// `9·2¹²⁴`, down to `2⁻¹²⁴`) neither overflow nor leave the normal range; outside it the
+/// full-range path scales it.
+const LOBE_LO: f32 = 1.0 / 2_147_483_648.0;
+const LOBE_HI: f32 = 2_147_483_648.0;
+
+/// `l2 ∈ [LOBE_LO, LOBE_HI]` in one integer compare, as [`in_common_range`].
+#[inline(always)]
+fn in_lobe_range(l2: f32) -> bool {
+    l2.to_bits().wrapping_sub(LOBE_LO.to_bits()) <= LOBE_HI.to_bits() - LOBE_LO.to_bits()
+}
+
 /// Multiplies by 2^k exactly by rescaling so the largest component lands in [1, 2).
 #[inline]
 fn rescaled(v: Vec3) -> Vec3 {
@@ -80,6 +94,45 @@ pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
     (d, d != Vec3::ZERO)
 }
 
+/// [`normalize_flagged`] and `v` [`Scaled`]: as it is where `v·v` lies in `[2⁻³¹, 2³¹]` (this
+/// form's common range), else by the full-range path's power of two (the zero vector where the
+/// direction is zero). The same direction, bit for bit, as [`normalize_flagged`].
+#[inline(always)]
+pub(crate) fn normalize_flagged_scaled(v: Vec3) -> (Vec3, bool, Scaled) {
+    let l2 = v.length_squared();
+    if in_lobe_range(l2) {
+        return (v * (1.0 / math::sqrt(l2)), true, Scaled { w: v, ww: l2 });
+    }
+    let (d, _, w) = full_range_scaled(v);
+    (d, d != Vec3::ZERO, w)
+}
+
+/// A vector times a power of two `c`, and its squared length `ww = ‖c·v‖²`: what Phong's squared
+/// lobe base reads in place of a unit vector (see
+/// [`ResolvedModel::phong_base_squared`](crate::reflection::resolved_model::ResolvedModel::phong_base_squared)).
+///
+/// The scale is exact, so any two scalings of the same vector give ratios such as
+/// `(a·b)² / (‖a‖²‖b‖²)` the same bits, as long as no product under- or overflows: the one-light
+/// form scales its largest component into `[2, 4)`, the light loop keeps a vector whose squared
+/// length lies in `[2⁻³¹, 2³¹]` as it is (`c = 1`) and scales the others as the one-light form
+/// does, and their lobes agree bit for bit.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Scaled {
+    /// `c·v`.
+    pub(crate) w: Vec3,
+    /// `‖c·v‖²`.
+    pub(crate) ww: f32,
+}
+
+impl Scaled {
+    /// A unit vector as it is (`c = 1`), its squared length taken as 1: for directions the caller
+    /// gives as unit (an infinite viewer, a directional light), in both forms alike.
+    #[inline(always)]
+    pub(crate) fn unit(v: Vec3) -> Self {
+        Self { w: v, ww: 1.0 }
+    }
+}
+
 /// `(normalize_or_zero(v), length(v))` for any `v`, inline and without a branch or a call: the
 /// rare cases of the functions here, and the whole of [`normalize_full`].
 ///
@@ -90,6 +143,13 @@ pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
 /// Zero, NaN and infinite components give `(0, 0)`.
 #[inline(always)]
 fn full_range(v: Vec3) -> (Vec3, f32) {
+    let (dir, len, _) = full_range_scaled(v);
+    (dir, len)
+}
+
+/// [`full_range`] and the scaled vector it normalised ([`Scaled`]; zero where the direction is).
+#[inline(always)]
+fn full_range_scaled(v: Vec3) -> (Vec3, f32, Scaled) {
     // A NaN or infinite component leaves a NaN or `+∞` in `w` (see `scales`), which `valid`
     // rejects.
     let (scale, unscale) = scales(v);
@@ -100,7 +160,11 @@ fn full_range(v: Vec3) -> (Vec3, f32) {
     let root = math::sqrt(w2);
     let len = math::min_or(root * unscale, math::MAX);
     let dir = w * (1.0 / root);
-    if valid { (dir, len) } else { (Vec3::ZERO, 0.0) }
+    if valid {
+        (dir, len, Scaled { w, ww: w2 })
+    } else {
+        (Vec3::ZERO, 0.0, Scaled::unit(Vec3::ZERO))
+    }
 }
 
 /// The power of two `2^(127−e)` for the largest magnitude `m` of `v`, and its inverse
@@ -159,18 +223,18 @@ fn scales_of_largest(m: f32) -> (f32, f32) {
 /// The same answer (bit for bit where `v·v` neither overflows nor underflows) for more arithmetic
 /// on the common path: what a loop that the compiler vectorises across points wants, since there
 /// every branch is computed both ways.
-#[must_use]
+///
+/// Also returns the vector it normalised, [`Scaled`] (its largest component in `[2, 4)`).
 #[inline(always)]
-pub(crate) fn normalize_full(v: Vec3) -> Vec3 {
+pub(crate) fn normalize_full_scaled(v: Vec3) -> (Vec3, Scaled) {
     let (scale, _) = scales(v);
     unit_of_scaled(v * scale)
 }
 
-/// [`normalize_full`] of `sub_saturating(to, from)` for finite points, the same bits, with the
-/// shorter chain of [`scales_of_difference`].
-#[must_use]
+/// [`normalize_full_scaled`] of `sub_saturating(to, from)` for finite points, the same bits,
+/// with the shorter chain of [`scales_of_difference`].
 #[inline(always)]
-pub(crate) fn normalize_full_between(to: Vec3, from: Vec3) -> Vec3 {
+pub(crate) fn normalize_full_between_scaled(to: Vec3, from: Vec3) -> (Vec3, Scaled) {
     unit_of_scaled(scaled_difference(to, from).0)
 }
 
@@ -183,21 +247,30 @@ fn scaled_difference(to: Vec3, from: Vec3) -> (Vec3, f32) {
     (saturate(d) * scale, unscale)
 }
 
-/// `w / ‖w‖` for a `w` scaled by [`scales`], and 0 for `w = 0`.
+/// `w / ‖w‖` for a `w` scaled by [`scales`], and 0 for `w = 0`; and `w` itself.
 #[inline(always)]
-fn unit_of_scaled(w: Vec3) -> Vec3 {
+fn unit_of_scaled(w: Vec3) -> (Vec3, Scaled) {
+    let ww = w.length_squared();
     // √(w·w) ≥ 2⁻²³ for any non-zero finite v; the floor only keeps 0 · (1/0) out for v = 0.
-    w * (1.0 / math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE))
+    (
+        w * (1.0 / math::max_or(math::sqrt(ww), f32::MIN_POSITIVE)),
+        Scaled { w, ww },
+    )
 }
 
 /// [`direction_and_distance`] of finite points by the full-range formula alone (see
-/// [`normalize_full`]): the same answer, bit for bit where `‖to − from‖²` neither overflows nor
-/// underflows.
+/// [`normalize_full_scaled`]): the same answer, bit for bit where `‖to − from‖²` neither
+/// overflows nor underflows; and the difference [`Scaled`] (its largest component in `[2, 4)`).
 #[inline(always)]
-pub(crate) fn direction_and_distance_full(to: Vec3, from: Vec3) -> (Vec3, f32) {
+pub(crate) fn direction_and_distance_full_scaled(to: Vec3, from: Vec3) -> (Vec3, f32, Scaled) {
     let (w, unscale) = scaled_difference(to, from);
-    let root = math::max_or(math::sqrt(w.length_squared()), f32::MIN_POSITIVE);
-    (w * (1.0 / root), math::min_or(root * unscale, math::MAX))
+    let ww = w.length_squared();
+    let root = math::max_or(math::sqrt(ww), f32::MIN_POSITIVE);
+    (
+        w * (1.0 / root),
+        math::min_or(root * unscale, math::MAX),
+        Scaled { w, ww },
+    )
 }
 
 /// `Some(v / ‖v‖)`, or `None` when `v` is zero or not finite. See [`normalize_or_zero`].
@@ -289,6 +362,19 @@ pub(crate) fn direction_and_distance(to: Vec3, from: Vec3) -> (Vec3, f32) {
     full_range(sub_saturating(to, from))
 }
 
+/// [`direction_and_distance`] and the saturated difference [`Scaled`] (as
+/// [`normalize_flagged_scaled`] does): the same direction and distance, bit for bit.
+#[inline(always)]
+pub(crate) fn direction_and_distance_scaled(to: Vec3, from: Vec3) -> (Vec3, f32, Scaled) {
+    let v = to - from;
+    let l2 = v.length_squared();
+    if in_lobe_range(l2) {
+        let d = math::sqrt(l2);
+        return (v * (1.0 / d), d, Scaled { w: v, ww: l2 });
+    }
+    full_range_scaled(sub_saturating(to, from))
+}
+
 /// `normalize_or_zero(to − from)` with the difference saturated as in [`direction_and_distance`].
 #[inline(always)]
 pub(crate) fn direction_between(to: Vec3, from: Vec3) -> Vec3 {
@@ -300,9 +386,61 @@ pub(crate) fn direction_between(to: Vec3, from: Vec3) -> Vec3 {
     full_range(sub_saturating(to, from)).0
 }
 
+/// [`direction_between`] and the saturated difference [`Scaled`] (as
+/// [`normalize_flagged_scaled`] does): the same direction, bit for bit.
+#[inline(always)]
+pub(crate) fn direction_between_scaled(to: Vec3, from: Vec3) -> (Vec3, Scaled) {
+    let v = to - from;
+    let l2 = v.length_squared();
+    if in_lobe_range(l2) {
+        return (v * (1.0 / math::sqrt(l2)), Scaled { w: v, ww: l2 });
+    }
+    let (d, _, w) = full_range_scaled(sub_saturating(to, from));
+    (d, w)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The forms that also return their vector for Phong's squared base give the same direction
+    /// and distance, bit for bit, as the plain ones, inside their narrower common range and on
+    /// both sides of its bounds; the vector they return is the difference times a power of two.
+    #[test]
+    fn the_scaled_forms_keep_the_directions() {
+        let mut checked = 0;
+        for e in -70i32..=70 {
+            for m in [1.0f32, 1.3, 1.99] {
+                let s = m * 2f32.powi(e);
+                for d in [Vec3::new(s, -0.3 * s, 0.7 * s), Vec3::new(0.0, 0.0, s)] {
+                    let from = Vec3::new(0.5, -0.25, 2.0);
+                    let to = from + d;
+                    let (dir, dist) = direction_and_distance(to, from);
+                    let (dir2, dist2, w) = direction_and_distance_scaled(to, from);
+                    assert_eq!((dir, dist.to_bits()), (dir2, dist2.to_bits()), "{d}");
+                    assert_eq!(
+                        direction_between(to, from),
+                        direction_between_scaled(to, from).0
+                    );
+                    let (n, present) = normalize_flagged(d);
+                    let (n2, present2, w2) = normalize_flagged_scaled(d);
+                    assert_eq!((n, present), (n2, present2), "{d}");
+                    // `w` is `to − from` times a power of two, with its squared length.
+                    let diff = to - from;
+                    if diff == Vec3::ZERO {
+                        continue;
+                    }
+                    let ratio = w.w.max_element().max(-w.w.min_element())
+                        / diff.max_element().max(-diff.min_element());
+                    assert_eq!(ratio, f32::from_bits(ratio.to_bits() & 0x7f80_0000), "{d}");
+                    assert_eq!(w.ww, w.w.length_squared());
+                    assert_eq!(w2.w.normalize(), n, "{d}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 500, "{checked}");
+    }
 
     #[test]
     fn subnormal_and_huge_directions_are_exact() {
@@ -347,7 +485,10 @@ mod tests {
                     let tol = 4.0 * f64::from(f32::EPSILON) + 2f64.powi(-149) / big.abs() as f64;
                     let (dir, l) = full_range(v);
                     let want = [x / len, y / len, z / len];
-                    for (got, d) in [(dir, "full_range"), (normalize_full(v), "normalize_full")] {
+                    for (got, d) in [
+                        (dir, "full_range"),
+                        (normalize_full_scaled(v).0, "normalize_full_scaled"),
+                    ] {
                         for (g, w) in got.to_array().into_iter().zip(want) {
                             assert!(
                                 (g as f64 - w).abs() <= tol,
@@ -360,7 +501,7 @@ mod tests {
                         (l as f64 - want_len).abs() <= tol * want_len,
                         "v = {v:?}: {l:e}"
                     );
-                    let (dir2, l2) = direction_and_distance_full(v, Vec3::ZERO);
+                    let (dir2, l2, _) = direction_and_distance_full_scaled(v, Vec3::ZERO);
                     assert_eq!((dir2, l2.to_bits()), (dir, l.to_bits()), "v = {v:?}");
                     checked += 1;
                 }
@@ -369,7 +510,7 @@ mod tests {
         assert!(checked > 3000, "{checked}");
         // Zero, NaN and infinite components.
         assert_eq!(full_range(Vec3::ZERO), (Vec3::ZERO, 0.0));
-        assert_eq!(normalize_full(Vec3::ZERO), Vec3::ZERO);
+        assert_eq!(normalize_full_scaled(Vec3::ZERO).0, Vec3::ZERO);
         for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
             for v in [
                 Vec3::new(bad, 1.0, 0.0),

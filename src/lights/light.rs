@@ -9,7 +9,10 @@ use glam::Vec3;
 use crate::attenuation::{Attenuation, FlatAttenuation};
 use crate::error::{self, PhongError};
 use crate::math;
-use crate::normalize::{direction_and_distance, direction_and_distance_full};
+use crate::normalize::{
+    Scaled, direction_and_distance, direction_and_distance_full_scaled,
+    direction_and_distance_scaled,
+};
 use crate::pow::lobe_pow;
 
 /// The three colours a light contributes: to the ambient, diffuse and specular terms.
@@ -259,6 +262,18 @@ pub trait LightSource {
     fn flat(&self) -> Option<FlatLight> {
         None
     }
+
+    /// [`sample`](Self::sample), and the offset to the light before its normalisation, times a
+    /// power of two, with its squared length: what [`Shader`](crate::Shader)'s Phong lobe reads
+    /// under [`PowStrategy::Auto`](crate::PowStrategy::Auto), `(R·V)²` from the vectors as they
+    /// are, so that it does not wait for the unit direction. The default (every light outside
+    /// this crate, and a directional light) gives the unit direction and 1.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn sample_scaled(&self, p: Vec3) -> (LightSample, Vec3, f32) {
+        let sample = self.sample(p);
+        (sample, sample.direction, 1.0)
+    }
 }
 
 /// A directional or point light with its falloff as one formula, so a shading loop evaluates it
@@ -278,23 +293,26 @@ pub struct FlatLight {
 }
 
 impl FlatLight {
-    /// [`LightSource::sample`] by the one formula, with the full-range direction and distance
-    /// (no range test): the same direction and factor as `sample`, bit for bit wherever the
-    /// squared distance neither under- nor overflows `f32` ([`FlatAttenuation`] is
-    /// `Attenuation::factor`'s own evaluation).
+    /// [`LightSource::sample_scaled`] by the one formula, with the full-range direction and
+    /// distance (no range test): the same direction and factor as `sample`, bit for bit wherever
+    /// the squared distance neither under- nor overflows `f32` ([`FlatAttenuation`] is
+    /// `Attenuation::factor`'s own evaluation), and the offset to the light [`Scaled`] (the unit
+    /// direction and 1 for a directional light).
     #[inline(always)]
-    pub(crate) fn sample(&self, p: Vec3) -> LightSample {
+    pub(crate) fn sample_scaled(&self, p: Vec3) -> (LightSample, Scaled) {
         if self.point {
-            let (direction, d) = direction_and_distance_full(self.origin, p);
-            LightSample {
+            let (direction, d, w) = direction_and_distance_full_scaled(self.origin, p);
+            let sample = LightSample {
                 direction,
                 factor: self.attenuation.factor(d),
-            }
+            };
+            (sample, w)
         } else {
-            LightSample {
+            let sample = LightSample {
                 direction: self.origin,
                 factor: 1.0,
-            }
+            };
+            (sample, Scaled::unit(self.origin))
         }
     }
 }
@@ -465,6 +483,17 @@ impl LightSource for PointLight {
             direction,
             factor: self.attenuation.factor_of_length(d),
         }
+    }
+    /// The same sample, with the offset by [`direction_and_distance_scaled`] (whose common range
+    /// is narrower).
+    #[inline(always)]
+    fn sample_scaled(&self, p: Vec3) -> (LightSample, Vec3, f32) {
+        let (direction, d, w) = direction_and_distance_scaled(self.position, p);
+        let sample = LightSample {
+            direction,
+            factor: self.attenuation.factor_of_length(d),
+        };
+        (sample, w.w, w.ww)
     }
 }
 
@@ -778,6 +807,21 @@ impl SpotLight {
     }
 }
 
+impl SpotLight {
+    /// The point light's sample with its factor times [`SpotLight::spot_factor`].
+    #[inline(always)]
+    fn in_cone(&self, sample: LightSample) -> LightSample {
+        let LightSample { direction, factor } = sample;
+        let spot = self.spot_factor(direction);
+        let factor = if spot > 0.0 {
+            (factor * spot).min(math::MAX)
+        } else {
+            0.0
+        };
+        LightSample { direction, factor }
+    }
+}
+
 impl LightSource for SpotLight {
     #[inline]
     fn colors(&self) -> &LightColors {
@@ -791,14 +835,12 @@ impl LightSource for SpotLight {
     /// The [`PointLight`]'s sample, its factor times [`SpotLight::spot_factor`].
     #[inline]
     fn sample(&self, p: Vec3) -> LightSample {
-        let LightSample { direction, factor } = self.point.sample(p);
-        let spot = self.spot_factor(direction);
-        let factor = if spot > 0.0 {
-            (factor * spot).min(math::MAX)
-        } else {
-            0.0
-        };
-        LightSample { direction, factor }
+        self.in_cone(self.point.sample(p))
+    }
+    #[inline]
+    fn sample_scaled(&self, p: Vec3) -> (LightSample, Vec3, f32) {
+        let (sample, w, ww) = self.point.sample_scaled(p);
+        (self.in_cone(sample), w, ww)
     }
 }
 
@@ -853,6 +895,14 @@ impl LightSource for Light {
             Light::Directional(l) => l.sample(p),
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
+        }
+    }
+    #[inline]
+    fn sample_scaled(&self, p: Vec3) -> (LightSample, Vec3, f32) {
+        match self {
+            Light::Directional(l) => l.sample_scaled(p),
+            Light::Point(l) => l.sample_scaled(p),
+            Light::Spot(l) => l.sample_scaled(p),
         }
     }
     #[inline]

@@ -649,7 +649,15 @@ fn log2_poly<const L: usize, const E: usize>(x: f32, k: &PolyConsts<L, E>) -> f3
     // Every `x ≤ 1` times `2^24` is a normal number, exactly, with the same significand: scaling
     // every `x` (and taking 24 from the exponent) gives the bits that scaling only the subnormal
     // ones gave, without the compare and the two selects.
-    let bits = (x * k.two_24).to_bits() as i32;
+    log2_of_scaled(x * k.two_24, k)
+}
+
+/// [`log2_poly`] of `x` given as `xs = 2^24·x`, for `xs ∈ [2^−125, 2^24]` (so that it is normal):
+/// the same bits, for a caller that has folded the scale into an earlier product (Phong's squared
+/// base, [`crate::resolved_model::ResolvedModel::phong_base_squared`]).
+#[inline(always)]
+fn log2_of_scaled<const L: usize, const E: usize>(xs: f32, k: &PolyConsts<L, E>) -> f32 {
+    let bits = xs.to_bits() as i32;
     // Exponent e such that m = x·2^(24−e) ∈ [√½, √2): offset by the bits of √½.
     let e = bits.wrapping_sub(0x3f35_04f3) >> 23;
     let m = f32::from_bits(bits.wrapping_sub(e.wrapping_shl(23)) as u32);
@@ -731,6 +739,21 @@ fn poly_pow_in<const L: usize, const E: usize, const FLOOR: bool>(
     if y >= k.flush { p } else { 0.0 }
 }
 
+/// `min(x, 1)^s` for `x` given as `xs = 2^24·x ≥ 0`, with `Poly7`: [`poly_pow_in`]'s bits for
+/// `min(x, 1)` (`FLOOR` as there), since [`log2_of_scaled`] gives [`log2_poly`]'s. An `xs` below
+/// `2^−125` gives a value the caller must select away (as `poly_pow_in` does for `x = 0`).
+#[inline(always)]
+pub(crate) fn poly_pow_of_scaled<const FLOOR: bool>(xs: f32, s: f32, k: &PolyConsts<7, 5>) -> f32 {
+    let y = s * log2_of_scaled(math::min_or(xs, k.two_24), k);
+    let (q, ri) = if FLOOR {
+        exp2_parts(y, k)
+    } else {
+        exp2_parts_unfloored(y, k)
+    };
+    let p = f32::from_bits(q.to_bits().wrapping_add((ri as u32) << 23));
+    if y >= k.flush { p } else { 0.0 }
+}
+
 /// [`poly_pow_with`] ending in a division, for a caller that selects it by a condition the same
 /// at every point (see [`auto_pow_fixed`]): `q·2^r` as `q / 2^−r`, which is exact here
 /// (`q ∈ (0.7, 1.5)` and `r ≥ −100` keep the result normal), so the bits are the product's; the
@@ -780,6 +803,41 @@ fn lobe_pow_squaring(x: f32, s: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `x^s` from `2^24·x` has `poly_pow_in`'s bits for `x`, at every exponent of `x` (subnormals
+    /// included), with and without `exp2`'s floor, and `x` above 1 is read as 1.
+    #[test]
+    fn the_power_of_the_scaled_base_is_the_power_of_the_base() {
+        let k = P7_CONSTS;
+        let mut checked = 0;
+        for e in 0u32..=127 {
+            for mantissa in [0u32, 1, 0x12_3457, 0x40_0000, 0x7f_ffff] {
+                let x = f32::from_bits(e << 23 | mantissa);
+                if x == 0.0 || x > 1.0 {
+                    continue;
+                }
+                let xs = x * 16_777_216.0;
+                for s in [0.0f32, 0.25, 1.0, 3.5, 16.125, 64.0, 500.0] {
+                    let want = poly_pow_in::<7, 5, true>(x, s, &k);
+                    assert_eq!(
+                        poly_pow_of_scaled::<true>(xs, s, &k).to_bits(),
+                        want.to_bits()
+                    );
+                    assert_eq!(
+                        poly_pow_of_scaled::<false>(xs, s, &k).to_bits(),
+                        want.to_bits()
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 3000, "{checked}");
+        for s in [0.5f32, 7.0] {
+            let one = poly_pow_in::<7, 5, true>(1.0, s, &k);
+            assert_eq!(poly_pow_of_scaled::<true>(3e7, s, &k), one);
+            assert_eq!(one, 1.0);
+        }
+    }
 
     /// `x^n` by the binary ladder: one squaring per bit of `n`, one product per set bit (the
     /// reference for [`pow_u32`]).

@@ -3,6 +3,7 @@
 use crate::gate::SpecularGate;
 use crate::math;
 use crate::normalization::Normalization;
+use crate::normalize::Scaled;
 use crate::pow::{PowPlan, PowStrategy};
 use crate::{BlinnPhong, Lambert, Model, Phong};
 
@@ -147,6 +148,42 @@ impl ResolvedModel {
     pub(crate) fn phong_base(n_dot_l: f32, n_dot_v: f32, l_dot_v: f32) -> f32 {
         2.0 * n_dot_l * n_dot_v - l_dot_v
     }
+
+    /// Phong's lobe base squared and scaled for `log2`: `2^24·(R·V)²` where `R·V > 0`, else 0,
+    /// from the normal, the offset to the light and the offset to the viewer as they are (each
+    /// times any power of two):
+    ///
+    /// ```text
+    /// R·V = 2(N·L)(N·V) − L·V = num / (‖n‖²‖l‖‖v‖)     N = n/‖n‖, L = l/‖l‖, V = v/‖v‖
+    /// num = 2(n·l)(n·v) − ‖n‖²(l·v)
+    /// 2^24·(R·V)² = num² · 2^24/(‖n‖⁴‖l‖²‖v‖²)
+    /// ```
+    ///
+    /// `PowStrategy::Auto`'s polynomial takes it with half the exponent, as Blinn-Phong's `(N·H)²`
+    /// is taken, and no square root or division waits in front of the power, where
+    /// [`phong_base`](Self::phong_base) reads the three unit vectors. The factor `2^24` is the
+    /// scale `log2`'s evaluation applies to its argument (`crate::pow::poly_pow_of_scaled`),
+    /// folded into the reciprocal, which is ready by the time `num²` is.
+    ///
+    /// Scaling a vector by a power of two scales `num²` and the divisor alike and exactly, so the
+    /// result has the same bits whatever the scales, wherever no product under- or overflows:
+    /// the one-light form and the light loop scale differently and agree.
+    ///
+    /// **Domain:** [`Scaled`] vectors as the normalisations return them: a squared length in
+    /// `[2⁻²⁵, 2²⁵]` or `[4, 48]`, 1 for a unit direction given as one, tiny only for vectors
+    /// whose components are subnormal; the divisor is floored at `2⁻¹⁰⁰` so that its reciprocal
+    /// stays finite. **Degenerate input:** a zero vector gives `num = 0`, so 0; a square that
+    /// underflows is 0, as Blinn-Phong's `(N·H)²` can be; a `num` that is NaN gives 0. The result
+    /// is finite: at most about `2^24` (more only by rounding; the power clamps it).
+    #[inline(always)]
+    pub(crate) fn phong_base_squared(n: Scaled, l: Scaled, v: Scaled) -> f32 {
+        const TWO_24: f32 = 16_777_216.0;
+        const FLOOR: f32 = 7.888_609e-31; // 2^-100
+        let num = 2.0 * n.w.dot(l.w) * n.w.dot(v.w) - n.ww * l.w.dot(v.w);
+        let den = n.ww * n.ww * (l.ww * v.ww);
+        let xs = num * num * (TWO_24 / math::max_or(den, FLOOR));
+        if num > 0.0 { xs } else { 0.0 }
+    }
 }
 
 /// The specular constants of one shininess: the normalisation factor and the pow plan.
@@ -187,5 +224,71 @@ impl From<Model> for ResolvedModel {
             Model::Phong(m) => m.into(),
             Model::BlinnPhong(m) => m.into(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    fn scaled(v: Vec3, c: f32) -> Scaled {
+        let w = v * c;
+        Scaled {
+            w,
+            ww: w.length_squared(),
+        }
+    }
+
+    /// `2^24·(R·V)²` has the same bits whatever powers of two scale the three vectors, is close
+    /// to the square of the unit vectors' `R·V`, and is 0 where `R·V ≤ 0` or a vector is zero.
+    #[test]
+    fn the_squared_base_is_the_same_at_every_scale() {
+        let mut seed = 0x2545_f491_u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed as f32 / u32::MAX as f32 * 2.0 - 1.0
+        };
+        let mut positive = 0;
+        for _ in 0..2000 {
+            let n = Vec3::new(next(), next(), next());
+            let l = Vec3::new(next(), next(), next()) * 7.0;
+            let v = Vec3::new(next(), next(), next()) * 0.3;
+            let base = phong_base_squared(scaled(n, 1.0), scaled(l, 1.0), scaled(v, 1.0));
+            for (a, b, c) in [(4.0f32, 0.25, 1024.0), (2f32.powi(-20), 2f32.powi(12), 0.5)] {
+                let other = phong_base_squared(scaled(n, a), scaled(l, b), scaled(v, c));
+                assert_eq!(base.to_bits(), other.to_bits(), "{n} {l} {v}");
+            }
+            let (n1, l1, v1) = (n.normalize(), l.normalize(), v.normalize());
+            let x = f64::from(ResolvedModel::phong_base(
+                n1.dot(l1),
+                n1.dot(v1),
+                l1.dot(v1),
+            ));
+            if x > 1e-3 {
+                positive += 1;
+                let want = x * x * 16_777_216.0;
+                // Both sides' `R·V` within a few roundings of 1 relative to the vectors' size.
+                assert!(
+                    (f64::from(base) - want).abs() <= 1e-4 * want.max(16_777_216.0 * 1e-3),
+                    "{base} vs {want}"
+                );
+            } else if x < -1e-3 {
+                assert_eq!(base, 0.0);
+            }
+        }
+        assert!(positive > 500, "{positive}");
+        let zero = scaled(Vec3::ZERO, 1.0);
+        let some = scaled(Vec3::new(0.3, 1.0, 0.2), 1.0);
+        for (n, l, v) in [(zero, some, some), (some, zero, some), (some, some, zero)] {
+            assert_eq!(phong_base_squared(n, l, v), 0.0);
+        }
+    }
+
+    fn phong_base_squared(n: Scaled, l: Scaled, v: Scaled) -> f32 {
+        ResolvedModel::phong_base_squared(n, l, v)
     }
 }

@@ -7,10 +7,18 @@
 //! made per-point shading four times slower. Each `pow` here is `#[inline(always)]`.
 
 use crate::math;
-use crate::pow::{PolyConsts, PowPlan, auto_pow, auto_pow_fixed, pow_u32, pow_u32_fixed};
+use crate::pow::{
+    P7_CONSTS, PolyConsts, PowPlan, auto_pow, auto_pow_fixed, poly_pow_of_scaled, pow_u32,
+    pow_u32_fixed,
+};
 
 /// `x^e` on `[0, 1]` for one lobe's exponent `e`, evaluated inline.
 pub(crate) trait LobePow: Copy {
+    /// Whether Phong's lobe under this plan may read the squared base (`PowStrategy::Auto`'s
+    /// plans, whose polynomial exponent is half the shininess: see `plan_for` in shader.rs), so
+    /// that the shading loop must form it; see [`phong_lobe`](Self::phong_lobe).
+    const SQUARED_BASE: bool = false;
+
     /// `x^e` for `x ∈ [0, 1]`.
     fn pow(self, x: f32) -> f32;
 
@@ -23,6 +31,18 @@ pub(crate) trait LobePow: Copy {
     fn lobe(self, x: f32) -> f32 {
         let p = self.pow(math::clamp_or_lo(x, 0.0, 1.0));
         if x > 0.0 { p } else { 0.0 }
+    }
+
+    /// Phong's lobe from either of its bases: `x = R·V` (raw, any value) and
+    /// `xs = 2^24·(R·V)²` (`ResolvedModel::phong_base_squared`, read only where
+    /// [`SQUARED_BASE`](Self::SQUARED_BASE) holds). The default is [`lobe`](Self::lobe)`(x)`;
+    /// `Auto`'s plans take `xs` where their exponent is the polynomial's (half the shininess), so
+    /// that the power does not wait for the unit vectors, and `x` for a whole shininess, which
+    /// they square.
+    #[inline(always)]
+    fn phong_lobe(self, x: f32, xs: f32) -> f32 {
+        let _ = xs;
+        self.lobe(x)
     }
 }
 
@@ -53,14 +73,17 @@ impl LobePow for NoLobe {
 }
 
 /// `PowStrategy::Auto`'s plan for one point at a time: squaring (with a loop over the exponent's
-/// bits) when `frac = 0`, else the degree-7 polynomial.
+/// bits) when `frac = 0`, else the degree-7 polynomial. `SQUARED`: a point's own exponent, whose
+/// Phong lobe reads the squared base (see [`LobePow::phong_lobe`]).
 #[derive(Clone, Copy)]
-pub(crate) struct Auto {
+pub(crate) struct Auto<const SQUARED: bool> {
     pub(crate) n: u32,
     pub(crate) frac: f32,
 }
 
-impl LobePow for Auto {
+impl<const SQUARED: bool> LobePow for Auto<SQUARED> {
+    const SQUARED_BASE: bool = SQUARED;
+
     #[inline(always)]
     fn pow(self, x: f32) -> f32 {
         auto_pow(x, self.n, self.frac)
@@ -70,10 +93,26 @@ impl LobePow for Auto {
     fn lobe(self, x: f32) -> f32 {
         lobe_by_branch(x, |b| auto_pow(b, self.n, self.frac))
     }
+
+    /// A point's own exponent: the polynomial on `xs` by a branch on its sign, as
+    /// [`lobe_by_branch`] does on `x` (a zero exponent gives 1 where `xs > 0`, see
+    /// [`AutoFixed`]'s).
+    #[inline(always)]
+    fn phong_lobe(self, x: f32, xs: f32) -> f32 {
+        if !SQUARED {
+            return self.lobe(x);
+        }
+        if xs > 0.0 {
+            poly_pow_of_scaled::<true>(xs, self.frac, &P7_CONSTS)
+        } else {
+            0.0
+        }
+    }
 }
 
 /// `PowStrategy::Auto`'s plan as straight-line code, for loops the compiler vectorises across
-/// points (see `auto_pow_fixed`); `SHARED`: the exponent is the same at every point.
+/// points (see `auto_pow_fixed`); `SHARED`: the exponent is the same at every point. A point's
+/// own exponent (`!SHARED`) is for Phong's squared base (see [`LobePow::phong_lobe`]).
 #[derive(Clone, Copy)]
 pub(crate) struct AutoFixed<'a, const SHARED: bool> {
     pub(crate) n: u32,
@@ -82,9 +121,24 @@ pub(crate) struct AutoFixed<'a, const SHARED: bool> {
 }
 
 impl<const SHARED: bool> LobePow for AutoFixed<'_, SHARED> {
+    const SQUARED_BASE: bool = !SHARED;
+
     #[inline(always)]
     fn pow(self, x: f32) -> f32 {
         auto_pow_fixed::<SHARED>(x, self.n, self.frac, self.consts)
+    }
+
+    /// A point's own exponent: the polynomial on `xs`, without a branch on the data.
+    #[inline(always)]
+    fn phong_lobe(self, x: f32, xs: f32) -> f32 {
+        if SHARED {
+            return self.lobe(x);
+        }
+        debug_assert_eq!(self.n, 0, "a per-point exponent's plan never squares");
+        // A zero exponent needs no select of its own: `0·log2 xs` is 0 for every `xs`, since
+        // `log2` is finite there (about −151 at 0), and `exp2(0)` is exactly 1.
+        let p = poly_pow_of_scaled::<false>(math::max_or(xs, 0.0), self.frac, self.consts);
+        if xs > 0.0 { p } else { 0.0 }
     }
 }
 

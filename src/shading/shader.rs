@@ -9,7 +9,8 @@ use crate::material::Material;
 use crate::math;
 use crate::model::ReflectionModel;
 use crate::normalize::{
-    direction_between, normalize_flagged, normalize_full, normalize_full_between,
+    Scaled, direction_between, direction_between_scaled, normalize_flagged,
+    normalize_flagged_scaled, normalize_full_between_scaled, normalize_full_scaled,
 };
 use crate::normalize_or_zero;
 use crate::pow::{
@@ -379,8 +380,14 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     /// [`PowStrategy::Auto`](crate::PowStrategy::Auto) a point's own exponent always takes the
     /// degree-7 polynomial (`Poly7`), whole exponents included: choosing squaring for whole ones
     /// would run both forms at every point of a vectorised loop. Its error is `Poly7`'s (8-bit
-    /// output as exact as `powf`); a [`Surface`] equal to the material with a fractional
-    /// shininess gives exactly [`shade_visible`](Self::shade_visible)'s terms.
+    /// output as exact as `powf`). Phong's lobe then reads the squared base: `(R·V)^s` is
+    /// evaluated as `((R·V)²)^(s/2)`, with `(R·V)²` formed from the normal and the offsets to the
+    /// light and the viewer before they are normalised, so that the power, the longest part of a
+    /// textured point's work, waits for no square root or division (Blinn-Phong's `(N·H)²` is
+    /// already a square). A [`Surface`] equal to the material with a fractional shininess gives
+    /// exactly [`shade_visible`](Self::shade_visible)'s terms, except Phong's specular term under
+    /// `Auto`, which differs from it by the rounding of the two bases: at most
+    /// `(16·s + 64)·2⁻²⁴ · Ks ⊙ Σ f·Ls` (tests/shader.rs).
     ///
     /// ```
     /// use glam::{Vec3, Vec3A};
@@ -459,6 +466,37 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         }
     }
 
+    /// The point's unit normal and direction to the viewer; with `squared` (Phong's squared
+    /// base) also the two vectors before normalisation, [`Scaled`], by the normalisations that
+    /// return them (whose common range is narrower, see [`normalize_flagged_scaled`]).
+    #[inline(always)]
+    fn frame(&self, pt: Point, squared: bool) -> Frame {
+        let Point { position, normal } = pt;
+        if squared {
+            let (n, n_present, n_scaled) = normalize_flagged_scaled(normal);
+            let (v, v_scaled) = match self.viewer {
+                Viewer::At(eye) => direction_between_scaled(eye, position),
+                Viewer::Infinite(dir) => (dir, Scaled::unit(dir)),
+            };
+            Frame {
+                n,
+                v,
+                n_present,
+                n_scaled,
+                v_scaled,
+            }
+        } else {
+            let (n, n_present) = normalize_flagged(normal);
+            Frame {
+                n,
+                v: self.view_direction(position),
+                n_present,
+                n_scaled: Scaled::unit(Vec3::ZERO),
+                v_scaled: Scaled::unit(Vec3::ZERO),
+            }
+        }
+    }
+
     /// `SHARED`: `surface` is the shader's own, the same at every point.
     #[inline(always)]
     fn run<const SHARED: bool>(
@@ -471,19 +509,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         if let (Some(one), Some(r)) = (self.one, self.resolved) {
             return self.one_light::<SHARED>(r, surface, one, position, normal, visibility);
         }
-        let (n, n_present) = normalize_flagged(normal);
-        let v = self.view_direction(position);
         // One loop per lobe, chosen once per point: each stays small enough to keep its values in
         // registers, where one loop branching per light on the lobe kind spilled to the stack.
-        let pt = Point {
-            position,
-            n,
-            v,
-            n_present,
-        };
+        let pt = Point { position, normal };
         let (ambient, diffuse, specular) = match self.resolved {
             Some(r) if !M::HAS_SPECULAR || r.lobe == Lobe::None => {
-                self.light_loop::<NO_LOBE>(r, surface, pt, visibility, lobe_pow::NoLobe)
+                self.light_loop::<NO_LOBE, _>(r, surface, pt, visibility, lobe_pow::NoLobe)
             }
             // The pow plan is chosen here too, so the loop runs the plan's code inline and calls
             // nothing: a call inside it would force every live value out of the vector registers.
@@ -493,7 +524,26 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     n,
                     frac,
                     poly: Poly::P7,
-                } => self.lobe_loop(r, surface, pt, visibility, lobe_pow::Auto { n, frac }),
+                } => {
+                    // A point's own exponent is for Phong's squared base (see `plan_for`).
+                    if SHARED {
+                        self.lobe_loop(
+                            r,
+                            surface,
+                            pt,
+                            visibility,
+                            lobe_pow::Auto::<false> { n, frac },
+                        )
+                    } else {
+                        self.lobe_loop(
+                            r,
+                            surface,
+                            pt,
+                            visibility,
+                            lobe_pow::Auto::<true> { n, frac },
+                        )
+                    }
+                }
                 PowPlan::Squaring { n } => {
                     self.lobe_loop(r, surface, pt, visibility, lobe_pow::Squaring(n))
                 }
@@ -537,8 +587,11 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     ///
     /// The same answer as the light loop, bit for bit wherever no squared length under- or
     /// overflows `f32` (there the full-range formula is the more exact one): the same operations
-    /// in the same order, `FlatAttenuation` being `Attenuation::factor`'s own. Tested in
-    /// tests/shader.rs for every model, falloff, viewer, visibility and per-point surface.
+    /// in the same order, `FlatAttenuation` being `Attenuation::factor`'s own. Phong's squared
+    /// base for a point's own exponent is formed from vectors scaled by other powers of two than
+    /// the light loop's, and has the same bits (`ResolvedModel::phong_base_squared`). Tested in
+    /// tests/shader.rs for every model, falloff, viewer, visibility and per-point surface, with
+    /// points and normals on both sides of either form's ranges.
     ///
     /// `SHARED`: `surface` is the shader's own, so its exponent is the same at every point, which
     /// lets a whole one skip the polynomial (see `auto_pow_fixed`).
@@ -554,12 +607,12 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
     ) -> Terms {
         let blinn = M::HAS_SPECULAR && r.lobe == Lobe::Blinn;
         let phong = M::HAS_SPECULAR && r.lobe == Lobe::Phong;
-        let n = normalize_full(normal);
-        let v = match self.viewer {
-            Viewer::At(eye) => normalize_full_between(eye, position),
-            Viewer::Infinite(dir) => dir,
+        let (n, n_scaled) = normalize_full_scaled(normal);
+        let (v, v_scaled) = match self.viewer {
+            Viewer::At(eye) => normalize_full_between_scaled(eye, position),
+            Viewer::Infinite(dir) => (dir, Scaled::unit(dir)),
         };
-        let sample = one.flat.sample(position);
+        let (sample, l_scaled) = one.flat.sample_scaled(position);
         let (l, f) = (sample.direction, sample.factor);
         let vis = visibility.visibility(0);
         debug_assert!(
@@ -592,14 +645,20 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
                     n: whole,
                     frac,
                     poly: Poly::P7,
-                } => lobe_power(
-                    base,
-                    lobe_pow::AutoFixed::<SHARED> {
+                } => {
+                    let pow = lobe_pow::AutoFixed::<SHARED> {
                         n: whole,
                         frac,
                         consts: &one.poly,
-                    },
-                ),
+                    };
+                    if phong {
+                        // A point's own exponent reads Phong's squared base (see `plan_for`).
+                        let xs = ResolvedModel::phong_base_squared(n_scaled, l_scaled, v_scaled);
+                        pow.phong_lobe(base, xs)
+                    } else {
+                        lobe_power(base, pow)
+                    }
+                }
                 PowPlan::Squaring { n: whole } => lobe_power(base, lobe_pow::SquaringFixed(whole)),
                 PowPlan::Exact { s } => lobe_power(base, lobe_pow::Exact(s)),
                 plan => lobe_power(base, lobe_pow::Plan(plan)),
@@ -665,29 +724,31 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         pow: impl LobePow,
     ) -> (Vec3A, Vec3A, Vec3A) {
         if r.lobe == Lobe::Blinn {
-            self.light_loop::<BLINN>(r, surface, pt, visibility, pow)
+            self.light_loop::<BLINN, _>(r, surface, pt, visibility, pow)
         } else {
-            self.light_loop::<PHONG>(r, surface, pt, visibility, pow)
+            self.light_loop::<PHONG, _>(r, surface, pt, visibility, pow)
         }
     }
 
     /// The light sums `(Ia + Σ f·La, Σ f·vis·wd·Ld, Σ f·vis·ws·Ls)` for a crate model whose lobe is
     /// `LOBE`, with `pow(x) = x^e` on `(0, 1]` for the lobe's exponent `e`.
     #[inline(always)]
-    fn light_loop<const LOBE: u8>(
+    fn light_loop<const LOBE: u8, P: LobePow>(
         &self,
         r: ResolvedModel,
         surface: &Prepared,
         pt: Point,
         mut visibility: impl Visibility,
-        pow: impl LobePow,
+        pow: P,
     ) -> (Vec3A, Vec3A, Vec3A) {
-        let Point {
-            position,
+        let position = pt.position;
+        let Frame {
             n,
             v,
             n_present,
-        } = pt;
+            n_scaled,
+            v_scaled,
+        } = self.frame(pt, LOBE == PHONG && P::SQUARED_BASE);
         let n_dot_v = n.dot(v);
         // A missing direction (zero vector) means no highlight. For Phong a zero L or V already
         // gives a base R·V = 0, so only a zero N needs the mask; Blinn-Phong's (N·H)² needs all
@@ -702,28 +763,30 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             v,
             n_dot_v,
             specular_scale,
+            n_scaled,
+            v_scaled,
         };
         // One light, the commonest case, without a loop: straight-line code, so a caller's loop
         // over points has no inner loop and the compiler can vectorise it across points.
         if let [light] = self.lights {
-            return Self::add_light::<LOBE>(&k, sums, 0, light, visibility.visibility(0), pow);
+            return Self::add_light::<LOBE, _>(&k, sums, 0, light, visibility.visibility(0), pow);
         }
         let mut sums = sums;
         for (i, light) in self.lights.iter().enumerate() {
-            sums = Self::add_light::<LOBE>(&k, sums, i, light, visibility.visibility(i), pow);
+            sums = Self::add_light::<LOBE, _>(&k, sums, i, light, visibility.visibility(i), pow);
         }
         sums
     }
 
     /// Adds one light's parts to the sums `(ambient, diffuse, specular)`.
     #[inline(always)]
-    fn add_light<const LOBE: u8>(
+    fn add_light<const LOBE: u8, P: LobePow>(
         k: &LightConsts,
         sums: (Vec3A, Vec3A, Vec3A),
         i: usize,
         light: &L,
         vis: f32,
-        pow: impl LobePow,
+        pow: P,
     ) -> (Vec3A, Vec3A, Vec3A) {
         let LightConsts {
             r,
@@ -732,9 +795,18 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
             v,
             n_dot_v,
             specular_scale,
+            n_scaled,
+            v_scaled,
         } = *k;
         let (mut ambient, mut diffuse, mut specular) = sums;
-        let sample = light.sample(position);
+        // Phong's squared base (`Auto`'s plans) reads the offset to the light as it is.
+        let squared = LOBE == PHONG && P::SQUARED_BASE;
+        let (sample, l_scaled) = if squared {
+            let (sample, w, ww) = light.sample_scaled(position);
+            (sample, Scaled { w, ww })
+        } else {
+            (light.sample(position), Scaled::unit(Vec3::ZERO))
+        };
         debug_assert!(
             (0.0..=1.0).contains(&vis),
             "visibility of light {i} must lie in [0, 1], got {vis}"
@@ -747,13 +819,19 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         let wd = r.diffuse(n_dot_l);
         let ws = match LOBE {
             PHONG => {
-                let base = ResolvedModel::phong_base(n_dot_l, n_dot_v, l.dot(v));
                 // A shadowed light (visibility 0) adds `fv·ws = 0` whatever the lobe: its base
                 // is taken as 0, so that the lobe's own branch skips the power for it as for a
                 // base `≤ 0`, with the same bits. Tested on the visibility, known early, rather
                 // than on `fv`, which waits for the attenuation's division.
-                let base = if vis > 0.0 { base } else { 0.0 };
-                specular_scale * r.gate(n_dot_l) * lobe_power(base, pow)
+                let lobe = if squared {
+                    // A point's own exponent reads the squared base (see `plan_for`).
+                    let xs = ResolvedModel::phong_base_squared(n_scaled, l_scaled, v_scaled);
+                    pow.phong_lobe(0.0, if vis > 0.0 { xs } else { 0.0 })
+                } else {
+                    let base = ResolvedModel::phong_base(n_dot_l, n_dot_v, l.dot(v));
+                    lobe_power(if vis > 0.0 { base } else { 0.0 }, pow)
+                };
+                specular_scale * r.gate(n_dot_l) * lobe
             }
             // As Phong's, but by a branch of its own: `(N·H)²` is rarely `≤ 0`, so the lobe
             // selects rather than branches on it, and only the visibility skips the power (a
@@ -786,12 +864,10 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
         pt: Point,
         mut visibility: impl Visibility,
     ) -> (Vec3A, Vec3A, Vec3A) {
-        let Point {
-            position,
-            n,
-            v,
-            n_present,
-        } = pt;
+        let position = pt.position;
+        let Frame {
+            n, v, n_present, ..
+        } = self.frame(pt, false);
         let specular_on = M::HAS_SPECULAR && n_present && v != Vec3::ZERO;
         let mut ambient = Vec3A::from(self.ambient_light);
         let mut diffuse = Vec3A::ZERO;
@@ -835,16 +911,29 @@ struct LightConsts {
     v: Vec3,
     n_dot_v: f32,
     specular_scale: f32,
+    /// The normal and the offset to the viewer before normalisation, for Phong's squared base.
+    n_scaled: Scaled,
+    v_scaled: Scaled,
 }
 
-/// The point being shaded: its position, unit (or zero) normal and direction to the viewer.
+/// The point being shaded, as the caller gives it.
 #[derive(Clone, Copy)]
 struct Point {
     position: Vec3,
+    normal: Vec3,
+}
+
+/// A point's unit (or zero) normal and direction to the viewer ([`Shader::frame`]).
+#[derive(Clone, Copy)]
+struct Frame {
     n: Vec3,
     v: Vec3,
     /// `n != 0`, known without a test on the common path (see [`normalize_flagged`]).
     n_present: bool,
+    /// The normal and the offset to the viewer before normalisation, for Phong's squared base
+    /// (zero vectors where it is not read).
+    n_scaled: Scaled,
+    v_scaled: Scaled,
 }
 
 /// The lobe kinds as const-generic parameters of [`Shader::light_loop`].
@@ -894,9 +983,17 @@ fn plan_for(resolved: Option<ResolvedModel>, s: f32, shared: bool) -> SpecularPl
             // a point's own exponent two more `max`/`min` pairs in a vectorised loop, where the
             // compiler cannot see that a clamp is idempotent.
             debug_assert!((0.0..=math::MAX).contains(&s), "plan_for: shininess {s}");
+            // Blinn-Phong's base is `(N·H)²`: half the exponent. Phong's is `R·V` for one
+            // material's exponent, and for a point's own the squared base `(R·V)²`, under half
+            // the exponent too (`LobePow::phong_lobe`): the polynomial, the longest part of a
+            // textured point's chain, then waits for no square root or division
+            // (`ResolvedModel::phong_base_squared`).
             let (scale, e) = match r.lobe {
                 Lobe::None => (0.0, 0.0),
-                Lobe::Phong => (r.normalization.phong_factor(s), s),
+                Lobe::Phong => (
+                    r.normalization.phong_factor(s),
+                    if shared { s } else { 0.5 * s },
+                ),
                 Lobe::Blinn => (r.normalization.blinn_factor(s), 0.5 * s),
             };
             let (n, frac) = if shared {

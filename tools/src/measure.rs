@@ -408,14 +408,27 @@ pub fn hard_scene(rng: &mut Rng) -> ShadeCase {
     }
 }
 
-/// The shading result of the crate and of the reference.
-pub fn shade_both(c: &ShadeCase) -> (Vec3, DVec3) {
+/// The shading result of the crate and of the reference. `per_point`: the crate shades the
+/// material as a per-point surface (`Shader::shade_surface` with `Surface::of` the material),
+/// the path of a textured renderer, whose shininess is a point's own.
+pub fn shade_both(c: &ShadeCase, per_point: bool) -> (Vec3, DVec3) {
     let scene = phong::Scene {
         lights: &c.lights,
         ambient: c.ambient,
         viewer: c.viewer,
     };
-    let got = phong::shade(&c.model, &c.material, &scene, c.position, c.normal).total();
+    let got = if per_point {
+        phong::Shader::new(c.model, &c.material, &scene)
+            .shade_surface(
+                c.position,
+                c.normal,
+                &phong::Surface::of(&c.material),
+                phong::Unshadowed,
+            )
+            .total()
+    } else {
+        phong::shade(&c.model, &c.material, &scene, c.position, c.normal).total()
+    };
     let want = r::shade(
         &c.model,
         &c.material,
@@ -449,9 +462,10 @@ impl ShadeStats {
     }
 }
 
-/// Shades `n` scenes (ordinary, or [`hard_scene`]s when `hard`) from `seed` with `phong` and
-/// with the reference, and measures the difference.
-pub fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
+/// Shades `n` scenes (ordinary, or [`hard_scene`]s when `hard`) from `seed` with `phong` (as a
+/// per-point surface when `per_point`, see [`shade_both`]) and with the reference, and measures
+/// the difference.
+pub fn measure_shading(n: usize, seed: u64, hard: bool, per_point: bool) -> ShadeStats {
     let mut rng = Rng::new(seed);
     let mut s = ShadeStats::default();
     for _ in 0..n {
@@ -460,7 +474,7 @@ pub fn measure_shading(n: usize, seed: u64, hard: bool) -> ShadeStats {
         } else {
             typical_scene(&mut rng)
         };
-        let (got, want) = shade_both(&c);
+        let (got, want) = shade_both(&c, per_point);
         s.stats.vector(got, want, 1e-3, || {
             format!("scene at {} n {}", c.position, c.normal)
         });
