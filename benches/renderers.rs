@@ -10,9 +10,13 @@
 //!   diffuse colour, specular strength, shininess (non-integer, uniform in [2, 128]) and shadow
 //!   factor, one point light, a camera at a point. `phong` is `Shader::shade_surface(..)` in a
 //!   loop over the fragments' arrays, which the compiler vectorises; `hand_callback` and
-//!   `phong_callback` shade the same fragments one per call (each position through `black_box`),
-//!   as a rasterizer's per-fragment callback does, `phong_callback` through
-//!   `Shader::one_at_a_time`.
+//!   `phong_callback` shade the same fragments one per call (each position read through
+//!   `black_box` of a reference to it), as a rasterizer's per-fragment callback does,
+//!   `phong_callback` through `Shader::one_at_a_time`. Through a reference, not by value:
+//!   `black_box` of the value writes it to the stack as an 8-byte and a 4-byte store and reads it
+//!   back, and code that reloads it as 4 + 8 bytes then waits on a failed store forward (about 50
+//!   cycles a fragment, on this harness's round trip alone); which way LLVM reloads it changed with
+//!   unrelated code (DESIGN.md).
 //!
 //! The workspace's rasterizer has its own frame bench (`raster_frame`, `cargo bench -p raster`).
 //!
@@ -317,9 +321,10 @@ const CAMERA: Vec3 = Vec3::new(0.0, 1.0, 4.0);
 
 /// LearnOpenGL's lighting maps with a point light and a shadow factor (shadow-mapping chapter).
 ///
-/// `CALLBACK`: each fragment's position passes through `black_box`, so the compiler cannot
-/// vectorise across fragments: one fragment per call, as a rasterizer's per-fragment callback
-/// (texture lookups and shadow-map tests between fragments) shades.
+/// `CALLBACK`: each fragment's position is read through `black_box` (of a reference, see the
+/// module docs), so the compiler cannot vectorise across fragments: one fragment per call, as a
+/// rasterizer's per-fragment callback (texture lookups and shadow-map tests between fragments)
+/// shades.
 #[inline(never)]
 fn frag_hand<const CALLBACK: bool>(
     light: &HandLight,
@@ -330,7 +335,7 @@ fn frag_hand<const CALLBACK: bool>(
     let f = f.rows(out.len());
     for i in 0..out.len() {
         let p = if CALLBACK {
-            black_box(f.position[i])
+            *black_box(&f.position[i])
         } else {
             f.position[i]
         };
@@ -378,7 +383,7 @@ fn frag_phong<const CALLBACK: bool>(
     let f = f.rows(out.len());
     for i in 0..out.len() {
         let p = if CALLBACK {
-            black_box(f.position[i])
+            *black_box(&f.position[i])
         } else {
             f.position[i]
         };
