@@ -410,7 +410,8 @@ pub fn hard_scene(rng: &mut Rng) -> ShadeCase {
 
 /// The shading result of the crate and of the reference. `per_point`: the crate shades the
 /// material as a per-point surface (`Shader::shade_surface` with `Surface::of` the material),
-/// the path of a textured renderer, whose shininess is a point's own.
+/// the path of a textured renderer, whose shininess is a point's own (callers pair it with
+/// [`with_auto`], the strategy that path changes).
 pub fn shade_both(c: &ShadeCase, per_point: bool) -> (Vec3, DVec3) {
     let scene = phong::Scene {
         lights: &c.lights,
@@ -442,6 +443,23 @@ pub fn shade_both(c: &ShadeCase, per_point: bool) -> (Vec3, DVec3) {
     (got, want)
 }
 
+/// `model` with `PowStrategy::Auto`, the default, whose polynomial serves a point's own
+/// exponent (the scenes' models draw `Exact` and `Squaring`, whose errors are measured per
+/// strategy elsewhere).
+pub fn with_auto(model: Model) -> Model {
+    match model {
+        Model::Phong(m) => Model::Phong(phong::Phong {
+            pow: phong::PowStrategy::Auto,
+            ..m
+        }),
+        Model::BlinnPhong(m) => Model::BlinnPhong(phong::BlinnPhong {
+            pow: phong::PowStrategy::Auto,
+            ..m
+        }),
+        other => other,
+    }
+}
+
 /// Shading error with the 8-bit sRGB comparison.
 #[derive(Clone, Debug, Default)]
 pub struct ShadeStats {
@@ -463,8 +481,8 @@ impl ShadeStats {
 }
 
 /// Shades `n` scenes (ordinary, or [`hard_scene`]s when `hard`) from `seed` with `phong` (as a
-/// per-point surface when `per_point`, see [`shade_both`]) and with the reference, and measures
-/// the difference.
+/// per-point surface under [`with_auto`]'s model when `per_point`, see [`shade_both`]) and with
+/// the reference, and measures the difference.
 pub fn measure_shading(n: usize, seed: u64, hard: bool, per_point: bool) -> ShadeStats {
     let mut rng = Rng::new(seed);
     let mut s = ShadeStats::default();
@@ -473,6 +491,14 @@ pub fn measure_shading(n: usize, seed: u64, hard: bool, per_point: bool) -> Shad
             hard_scene(&mut rng)
         } else {
             typical_scene(&mut rng)
+        };
+        let c = if per_point {
+            ShadeCase {
+                model: with_auto(c.model),
+                ..c
+            }
+        } else {
+            c
         };
         let (got, want) = shade_both(&c, per_point);
         s.stats.vector(got, want, 1e-3, || {

@@ -208,11 +208,12 @@ fn shading_section(o: &mut String) {
          away, a viewer 2–10 units away, s in [1, 256]. *hard*: points up to 1e4 from the origin, \
          lights 1e-6…1e6 away, normals within 0.01 rad of grazing, viewers 1e-3…1e6 away or at \
          infinity, s in [0, 1e4]. The last columns compare the 8-bit sRGB values \
-         (`linear_to_srgb8`) channel by channel. The *per-point* rows shade the same scenes' \
+         (`linear_to_srgb8`) channel by channel. The *per-point* rows shade the same scenes with \
+         `PowStrategy::Auto` (the default; the other rows draw `Exact` and `Squaring`) and the \
          materials as per-point surfaces (`Shader::shade_surface` with `Surface::of` the \
-         material), a textured renderer's path: there `PowStrategy::Auto` takes a point's own \
-         exponent by the polynomial, and Phong's lobe as `((R·V)²)^(s/2)` from the vectors \
-         before normalisation.\n\n",
+         material), a textured renderer's path: there `Auto` takes a point's own exponent by the \
+         polynomial, and Phong's lobe as `((R·V)²)^(s/2)` from the vectors before \
+         normalisation.\n\n",
     );
     o.push_str("| scenes | n | max abs | max rel | non-finite | 8-bit sRGB channels that differ | largest difference (levels) |\n");
     o.push_str("|---|---:|---:|---:|---:|---:|---:|\n");
