@@ -725,7 +725,16 @@ fn poly_pow_in<const L: usize, const E: usize, const FLOOR: bool>(
     s: f32,
     k: &PolyConsts<L, E>,
 ) -> f32 {
-    let y = s * log2_poly(x, k);
+    exp2_flushed::<L, E, FLOOR>(s * log2_poly(x, k), k)
+}
+
+/// `2^y` for `y = s·log2 x ≤ 0`, 0 below the flush bound: the end of [`poly_pow_in`] and
+/// [`poly_pow_of_scaled`], with `exp2`'s floor where `FLOOR` says so.
+#[inline(always)]
+fn exp2_flushed<const L: usize, const E: usize, const FLOOR: bool>(
+    y: f32,
+    k: &PolyConsts<L, E>,
+) -> f32 {
     let (q, ri) = if FLOOR {
         exp2_parts(y, k)
     } else {
@@ -744,14 +753,7 @@ fn poly_pow_in<const L: usize, const E: usize, const FLOOR: bool>(
 /// `2^−125` gives a value the caller must select away (as `poly_pow_in` does for `x = 0`).
 #[inline(always)]
 pub(crate) fn poly_pow_of_scaled<const FLOOR: bool>(xs: f32, s: f32, k: &PolyConsts<7, 5>) -> f32 {
-    let y = s * log2_of_scaled(math::min_or(xs, k.two_24), k);
-    let (q, ri) = if FLOOR {
-        exp2_parts(y, k)
-    } else {
-        exp2_parts_unfloored(y, k)
-    };
-    let p = f32::from_bits(q.to_bits().wrapping_add((ri as u32) << 23));
-    if y >= k.flush { p } else { 0.0 }
+    exp2_flushed::<7, 5, FLOOR>(s * log2_of_scaled(math::min_or(xs, k.two_24), k), k)
 }
 
 /// [`poly_pow_with`] ending in a division, for a caller that selects it by a condition the same
