@@ -755,8 +755,10 @@ fn main() {
          uniform in [2, 128] and a filtered shadow factor, one point light, a camera at a point. \
          `phong` is `Shader::shade_surface(..)` in a loop over the fragments' arrays, which the \
          compiler vectorises on both sides. `hand_callback` and `phong_callback` shade the same \
-         fragments one per call (each position through `black_box`), as a rasterizer's \
-         per-fragment callback does; `phong_callback` uses `Shader::one_at_a_time`.\n\
+         fragments one per call (each position read through `black_box` of a reference to it; \
+         through `black_box` of the value, before 2026-11-30, the harness's stack round trip \
+         became a failed store forward in the new light loop), as a rasterizer's per-fragment \
+         callback does; `phong_callback` uses `Shader::one_at_a_time`.\n\
          - Every group asserts before timing that the two sides agree within 1e-4 on every input.\n"
     );
     let frame_ms =
@@ -859,12 +861,15 @@ fn main() {
          evaluation of an overflowing denominator beside the common one, the clamps) and the \
          sanitising of each point's reflectances; the hand-written loop does none of it. As in \
          `scalar`, the vectorised loop waits on one chain per iteration: read off a trace of one \
-         iteration (now 444 instructions for four fragments) with Zen 4's latencies, its longest \
-         chain of dependent operations is about 176 cycles, against about 181 measured, so the \
-         iterations barely overlap. About 60 of those cycles are the light direction's \
+         iteration (444 instructions for four fragments) with Zen 4's latencies, its longest \
+         chain of dependent operations was about 176 cycles, against about 181 measured, so the \
+         iterations barely overlap. About 60 of those cycles were the light direction's \
          full-range normalisation (N's and V's run beside it), 64 the per-point power from its \
          base (the clamp, `log2`, the exponent, `exp2`), and the rest the base, the specular \
-         products and the sum (DESIGN.md). Parity needs about 11 cycles off that chain.\n\
+         products and the sum (DESIGN.md). Since 2026-11-30 Phong's lobe for a point's own \
+         exponent is `((R·V)²)^(s/2)`, the squared base formed from the vectors before their \
+         normalisation, so the power no longer waits for the square roots and divisions: \
+         45.3 → 40.9 cycles a fragment in the probe (the hand-written loop 42.5).\n\
          - **`batch_frac`** needs `Poly7` (degree 7 `log2`, degree 5 `exp2`) to stay as 8-bit \
          exact as `powf`; every cheaper strategy fails that criterion (table below), and Poly7's \
          two dependent polynomial chains cost about half as much again as the rest of the \
