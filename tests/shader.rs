@@ -672,3 +672,39 @@ fn a_saturated_factor_under_a_dim_colour_keeps_its_weight_saturated() {
     // The case the test is about occurred.
     assert!(above_one > 0, "no direction had N·L > 1");
 }
+
+/// Phong's squared base for a point's own exponent where the normal, the offset to the light and
+/// the offset to the viewer are all short (squared lengths near the light loop's lower bound for
+/// keeping them unscaled, so their product `‖n‖⁴‖l‖²‖v‖²` is far below 1): the one-light form and
+/// the light loop still agree bit for bit.
+#[test]
+fn short_vectors_keep_the_squared_base_bit_for_bit() {
+    let colors = LightColors::try_new(Vec3::ZERO, Vec3::ONE, Vec3::ONE).unwrap();
+    let p = Vec3::new(0.25, -0.5, 0.75);
+    let texel = Surface::textured(Vec3::splat(0.5), Vec3::ONE, 10.5);
+    let m = material();
+    let mut checked = 0;
+    for k in [10, 12, 14, 15, 16, 17] {
+        let s = 2f32.powi(-k);
+        let light =
+            PointLight::try_new(p + Vec3::new(0.3, 1.0, 0.2) * s, Attenuation::None, colors)
+                .unwrap();
+        let scene = Scene {
+            lights: &[light],
+            ambient: Vec3::ZERO,
+            viewer: Viewer::At(p + Vec3::new(-0.2, 1.0, 0.1) * s),
+        };
+        let shader = Shader::new(Phong::default(), &m, &scene);
+        for n in [Vec3::new(0.1, 1.0, 0.05), Vec3::new(-0.3, 1.0, 0.4)] {
+            let n = n * s;
+            let one = shader.shade_surface(p, n, &texel, Unshadowed);
+            let lone = shader
+                .one_at_a_time()
+                .shade_surface(p, n, &texel, Unshadowed);
+            assert_eq!(one, lone, "scale 2^-{k}, n = {n}");
+            assert!(one.specular.x > 0.0, "scale 2^-{k}: a highlight to compare");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 12);
+}

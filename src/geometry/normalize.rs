@@ -23,12 +23,12 @@ fn in_common_range(l2: f32) -> bool {
 }
 
 /// The narrower common range of the normalisations that also return their vector for Phong's
-/// squared base ([`Scaled`]): squared lengths in `[2⁻³¹, 2³¹]`. Inside it the vector is returned
-/// as it is, and the base's products of three such squared lengths and their squares (up to
-/// `9·2¹²⁴`, down to `2⁻¹²⁴`) neither overflow nor leave the normal range; outside it the
-/// full-range path scales it.
-const LOBE_LO: f32 = 1.0 / 2_147_483_648.0;
-const LOBE_HI: f32 = 2_147_483_648.0;
+/// squared base ([`Scaled`]): squared lengths in `[2⁻²⁵, 2²⁵]`. Inside it the vector is returned
+/// as it is, and the base's divisor `‖n‖⁴‖l‖²‖v‖²` stays in `[2⁻¹⁰⁰, 2¹⁰⁰]` (its floor in
+/// `ResolvedModel::phong_base_squared` is `2⁻¹⁰⁰`, where `2²⁴` over it is still finite) and
+/// `num²` below `9·2¹⁰⁰`; outside it the full-range path scales it.
+const LOBE_LO: f32 = 1.0 / 33_554_432.0;
+const LOBE_HI: f32 = 33_554_432.0;
 
 /// `l2 ∈ [LOBE_LO, LOBE_HI]` in one integer compare, as [`in_common_range`].
 #[inline(always)]
@@ -94,7 +94,7 @@ pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
     (d, d != Vec3::ZERO)
 }
 
-/// [`normalize_flagged`] and `v` [`Scaled`]: as it is where `v·v` lies in `[2⁻³¹, 2³¹]` (this
+/// [`normalize_flagged`] and `v` [`Scaled`]: as it is where `v·v` lies in `[2⁻²⁵, 2²⁵]` (this
 /// form's common range), else by the full-range path's power of two (the zero vector where the
 /// direction is zero). The same direction, bit for bit, as [`normalize_flagged`].
 #[inline(always)]
@@ -114,7 +114,7 @@ pub(crate) fn normalize_flagged_scaled(v: Vec3) -> (Vec3, bool, Scaled) {
 /// The scale is exact, so any two scalings of the same vector give ratios such as
 /// `(a·b)² / (‖a‖²‖b‖²)` the same bits, as long as no product under- or overflows: the one-light
 /// form scales its largest component into `[2, 4)`, the light loop keeps a vector whose squared
-/// length lies in `[2⁻³¹, 2³¹]` as it is (`c = 1`) and scales the others as the one-light form
+/// length lies in `[2⁻²⁵, 2²⁵]` as it is (`c = 1`) and scales the others as the one-light form
 /// does, and their lobes agree bit for bit.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Scaled {
