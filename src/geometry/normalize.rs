@@ -86,25 +86,40 @@ pub fn normalize_or_zero(v: Vec3) -> Vec3 {
 /// direction (the light loop's zero-normal mask) does not compare three components at every point.
 #[inline(always)]
 pub(crate) fn normalize_flagged(v: Vec3) -> (Vec3, bool) {
-    let l2 = v.length_squared();
-    if in_common_range(l2) {
-        return (v * (1.0 / math::sqrt(l2)), true);
-    }
-    let d = full_range(v).0;
-    (d, d != Vec3::ZERO)
+    let (d, present, _) = normalize_flagged_in::<false>(v);
+    (d, present)
 }
 
-/// [`normalize_flagged`] and `v` [`Scaled`]: as it is where `v·v` lies in `[2⁻²⁵, 2²⁵]` (this
-/// form's common range), else by the full-range path's power of two (the zero vector where the
-/// direction is zero). The same direction, bit for bit, as [`normalize_flagged`].
+/// [`normalize_flagged_in`] with Phong's squared base's range (`LOBE`).
 #[inline(always)]
 pub(crate) fn normalize_flagged_scaled(v: Vec3) -> (Vec3, bool, Scaled) {
+    normalize_flagged_in::<true>(v)
+}
+
+/// [`normalize_flagged`] and `v` [`Scaled`]: as it is where `v·v` lies in the common range of
+/// `LOBE` ([`in_range`]; with `LOBE`, `[2⁻²⁵, 2²⁵]`, the range Phong's squared base needs), else
+/// by the full-range path's power of two (the zero vector where the direction is zero). The same
+/// direction, bit for bit, either way; the plain form is this one without `LOBE`, the
+/// [`Scaled`] dropped, which costs it nothing.
+#[inline(always)]
+fn normalize_flagged_in<const LOBE: bool>(v: Vec3) -> (Vec3, bool, Scaled) {
     let l2 = v.length_squared();
-    if in_lobe_range(l2) {
+    if in_range::<LOBE>(l2) {
         return (v * (1.0 / math::sqrt(l2)), true, Scaled { w: v, ww: l2 });
     }
     let (d, _, w) = full_range_scaled(v);
     (d, d != Vec3::ZERO, w)
+}
+
+/// The common range of the plain normalisations ([`in_common_range`]), or with `LOBE` the
+/// narrower one of those that return their vector for Phong's squared base ([`in_lobe_range`]).
+#[inline(always)]
+fn in_range<const LOBE: bool>(l2: f32) -> bool {
+    if LOBE {
+        in_lobe_range(l2)
+    } else {
+        in_common_range(l2)
+    }
 }
 
 /// A vector times a power of two `c`, and its squared length `ww = ‖c·v‖²`: what Phong's squared
@@ -134,20 +149,14 @@ impl Scaled {
 }
 
 /// `(normalize_or_zero(v), length(v))` for any `v`, inline and without a branch or a call: the
-/// rare cases of the functions here, and the whole of [`normalize_full`].
+/// rare cases of the functions here, and the whole of [`normalize_full_scaled`]; and the scaled
+/// vector it normalised ([`Scaled`]; zero where the direction is).
 ///
 /// Scales `v` by the power of two `2^(127−e)` that brings its largest component (`e` from its
 /// biased exponent, see [`scales`]) into `[2, 4)`. The scaling is exact, so the direction is the
 /// correctly scaled one for every finite input (and, where `v·v` neither overflows nor
 /// underflows, the same bits as `v · (1/√(v·v))`); the squared length lies in `[2⁻⁴⁶, 48)`.
 /// Zero, NaN and infinite components give `(0, 0)`.
-#[inline(always)]
-fn full_range(v: Vec3) -> (Vec3, f32) {
-    let (dir, len, _) = full_range_scaled(v);
-    (dir, len)
-}
-
-/// [`full_range`] and the scaled vector it normalised ([`Scaled`]; zero where the direction is).
 #[inline(always)]
 fn full_range_scaled(v: Vec3) -> (Vec3, f32, Scaled) {
     // A NaN or infinite component leaves a NaN or `+∞` in `w` (see `scales`), which `valid`
@@ -353,22 +362,24 @@ fn saturate(d: Vec3) -> Vec3 {
 /// which fails the range test and is redone saturated out of line.
 #[inline(always)]
 pub(crate) fn direction_and_distance(to: Vec3, from: Vec3) -> (Vec3, f32) {
-    let v = to - from;
-    let l2 = v.length_squared();
-    if in_common_range(l2) {
-        let d = math::sqrt(l2);
-        return (v * (1.0 / d), d);
-    }
-    full_range(sub_saturating(to, from))
+    let (direction, distance, _) = direction_and_distance_in::<false>(to, from);
+    (direction, distance)
 }
 
 /// [`direction_and_distance`] and the saturated difference [`Scaled`] (as
-/// [`normalize_flagged_scaled`] does): the same direction and distance, bit for bit.
+/// [`normalize_flagged_in`] does with `LOBE`): the same direction and distance, bit for bit.
 #[inline(always)]
 pub(crate) fn direction_and_distance_scaled(to: Vec3, from: Vec3) -> (Vec3, f32, Scaled) {
+    direction_and_distance_in::<true>(to, from)
+}
+
+/// [`direction_and_distance_scaled`] with the range of `LOBE` (see [`in_range`]): the body of
+/// both forms.
+#[inline(always)]
+fn direction_and_distance_in<const LOBE: bool>(to: Vec3, from: Vec3) -> (Vec3, f32, Scaled) {
     let v = to - from;
     let l2 = v.length_squared();
-    if in_lobe_range(l2) {
+    if in_range::<LOBE>(l2) {
         let d = math::sqrt(l2);
         return (v * (1.0 / d), d, Scaled { w: v, ww: l2 });
     }
@@ -378,21 +389,22 @@ pub(crate) fn direction_and_distance_scaled(to: Vec3, from: Vec3) -> (Vec3, f32,
 /// `normalize_or_zero(to − from)` with the difference saturated as in [`direction_and_distance`].
 #[inline(always)]
 pub(crate) fn direction_between(to: Vec3, from: Vec3) -> Vec3 {
-    let v = to - from;
-    let l2 = v.length_squared();
-    if in_common_range(l2) {
-        return v * (1.0 / math::sqrt(l2));
-    }
-    full_range(sub_saturating(to, from)).0
+    direction_between_in::<false>(to, from).0
 }
 
-/// [`direction_between`] and the saturated difference [`Scaled`] (as
-/// [`normalize_flagged_scaled`] does): the same direction, bit for bit.
+/// [`direction_between_in`] with Phong's squared base's range (`LOBE`).
 #[inline(always)]
 pub(crate) fn direction_between_scaled(to: Vec3, from: Vec3) -> (Vec3, Scaled) {
+    direction_between_in::<true>(to, from)
+}
+
+/// [`direction_between`] and the saturated difference [`Scaled`], in the range of `LOBE` (as
+/// [`normalize_flagged_in`]): the same direction, bit for bit, either way.
+#[inline(always)]
+fn direction_between_in<const LOBE: bool>(to: Vec3, from: Vec3) -> (Vec3, Scaled) {
     let v = to - from;
     let l2 = v.length_squared();
-    if in_lobe_range(l2) {
+    if in_range::<LOBE>(l2) {
         return (v * (1.0 / math::sqrt(l2)), Scaled { w: v, ww: l2 });
     }
     let (d, _, w) = full_range_scaled(sub_saturating(to, from));
@@ -402,6 +414,12 @@ pub(crate) fn direction_between_scaled(to: Vec3, from: Vec3) -> (Vec3, Scaled) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `(direction, length)` of the full-range path.
+    fn full_range(v: Vec3) -> (Vec3, f32) {
+        let (dir, len, _) = full_range_scaled(v);
+        (dir, len)
+    }
 
     /// The forms that also return their vector for Phong's squared base give the same direction
     /// and distance, bit for bit, as the plain ones, inside their narrower common range and on
@@ -420,10 +438,10 @@ mod tests {
                     assert_eq!((dir, dist.to_bits()), (dir2, dist2.to_bits()), "{d}");
                     assert_eq!(
                         direction_between(to, from),
-                        direction_between_scaled(to, from).0
+                        direction_between_in::<true>(to, from).0
                     );
                     let (n, present) = normalize_flagged(d);
-                    let (n2, present2, w2) = normalize_flagged_scaled(d);
+                    let (n2, present2, w2) = normalize_flagged_in::<true>(d);
                     assert_eq!((n, present), (n2, present2), "{d}");
                     // `w` is `to − from` times a power of two, with its squared length.
                     let diff = to - from;

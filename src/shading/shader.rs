@@ -468,7 +468,9 @@ impl<'a, M: ReflectionModel, L: LightSource> Shader<'a, M, L> {
 
     /// The point's unit normal and direction to the viewer; with `squared` (Phong's squared
     /// base) also the two vectors before normalisation, [`Scaled`], by the normalisations that
-    /// return them (whose common range is narrower, see [`normalize_flagged_scaled`]).
+    /// return them (whose common range is narrower, see [`normalize_flagged_scaled`]). Two
+    /// branches rather than one body generic over `squared`: that form cost the one-point-per-call
+    /// light loop about 2.5 cycles a fragment (87 → 89, probe of `fragment`'s callback).
     #[inline(always)]
     fn frame(&self, pt: Point, squared: bool) -> Frame {
         let Point { position, normal } = pt;
