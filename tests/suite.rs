@@ -35,6 +35,8 @@ mod promises_geometry;
 mod promises_numerics;
 #[path = "properties.rs"]
 mod properties;
+#[path = "scale_invariance.rs"]
+mod scale_invariance;
 #[cfg(feature = "serde")]
 #[path = "serde.rs"]
 mod serde_files;

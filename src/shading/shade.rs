@@ -92,6 +92,15 @@ pub struct Scene<'a, L> {
 /// - `L = −V`: no Blinn-Phong specular (see [`BlinnPhong`](crate::BlinnPhong));
 /// - overflow: each channel saturates at `f32::MAX`.
 ///
+/// **Units.** Without falloff ([`Attenuation::None`](crate::Attenuation::None), directional
+/// lights) the terms depend on directions only, and a change of units by a power of two changes no
+/// bit: positions (the point, the lights, a viewer at a point) × `2ᵏ` and the normal × `2ʲ` give
+/// the same terms, from scales where squared lengths underflow `f32` to scales where they
+/// overflow, as long as every coordinate and every difference of two stays a normal `f32`. The
+/// normalisations divide the factor out exactly (`√(4ᵏx) = 2ᵏ√x`, or a power-of-two rescaling
+/// of their own). So do [`Shader`]'s `shade`, `shade_visible` and `shade_surface`, in both of its
+/// forms (tests/scale_invariance.rs). With falloff, distances enter as they are.
+///
 /// The compiler specialises this on `M` and `L`: [`Lambert`](crate::Lambert) does no specular work,
 /// a [`DirectionalLight`](crate::DirectionalLight) no distance or attenuation work. This is
 /// `Shader::new(model, material, scene).shade(position, normal)`: to shade many points under one
