@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo test --test fuzz_promises                       # CI: a short run (PHONG_FUZZ_EVALS default)
-//! PHONG_FUZZ_EVALS=100000000 cargo test --release --test fuzz_promises -- --nocapture
+//! PHONG_FUZZ_EVALS=1000000000 cargo test --release --test fuzz_promises -- --nocapture
 //! ```
 //!
 //! `PHONG_FUZZ_EVALS` is the number of public-function evaluations (a batch call counts one per
