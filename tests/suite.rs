@@ -16,6 +16,8 @@ mod accuracy_bounds;
 mod batch;
 #[path = "batch_parallel.rs"]
 mod batch_parallel;
+#[path = "change_of_coordinates.rs"]
+mod change_of_coordinates;
 #[path = "conformance.rs"]
 mod conformance;
 #[path = "gbuffer.rs"]
@@ -35,8 +37,6 @@ mod promises_geometry;
 mod promises_numerics;
 #[path = "properties.rs"]
 mod properties;
-#[path = "scale_invariance.rs"]
-mod scale_invariance;
 #[cfg(feature = "serde")]
 #[path = "serde.rs"]
 mod serde_files;

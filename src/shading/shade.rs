@@ -92,14 +92,20 @@ pub struct Scene<'a, L> {
 /// - `L = −V`: no Blinn-Phong specular (see [`BlinnPhong`](crate::BlinnPhong));
 /// - overflow: each channel saturates at `f32::MAX`.
 ///
-/// **Units.** Without falloff ([`Attenuation::None`](crate::Attenuation::None), directional
-/// lights) the terms depend on directions only, and a change of units by a power of two changes no
-/// bit: positions (the point, the lights, a viewer at a point) × `2ᵏ` and the normal × `2ʲ` give
-/// the same terms, from scales where squared lengths underflow `f32` to scales where they
-/// overflow, as long as every coordinate and every difference of two stays a normal `f32`. The
-/// normalisations divide the factor out exactly (`√(4ᵏx) = 2ᵏ√x`, or a power-of-two rescaling
-/// of their own). So do [`Shader`]'s `shade`, `shade_visible` and `shade_surface`, in both of its
-/// forms (tests/scale_invariance.rs). With falloff, distances enter as they are.
+/// **Changes of coordinates.** The terms read positions only through the differences
+/// `P_light − p` and `eye − p`, so moving the whole scene changes no bit wherever those
+/// differences come out the same (always, when the coordinates and the move lie on a grid whose
+/// sums are exact). A mirror image (one coordinate negated in every point, normal, light
+/// position and direction, and the viewer) changes no bit either. Without falloff
+/// ([`Attenuation::None`](crate::Attenuation::None), directional lights) the terms depend on
+/// directions only, and a change of units by a power of two changes no bit: positions (the
+/// point, the lights, a viewer at a point) × `2ᵏ` and the normal × `2ʲ` give the same terms,
+/// from scales where squared lengths underflow `f32` to scales where they overflow, as long as
+/// every coordinate and every difference of two stays a normal `f32`; the normalisations divide
+/// the factor out exactly (`√(4ᵏx) = 2ᵏ√x`, or a power-of-two rescaling of their own). All three
+/// hold for [`Shader`]'s `shade`, `shade_visible` and `shade_surface` in both of its forms, and
+/// the first two for the batch and G-buffer entry points at every level
+/// (tests/change_of_coordinates.rs).
 ///
 /// The compiler specialises this on `M` and `L`: [`Lambert`](crate::Lambert) does no specular work,
 /// a [`DirectionalLight`](crate::DirectionalLight) no distance or attenuation work. This is
