@@ -439,17 +439,16 @@ fn is_grey(c: Vec3) -> bool {
     c.x.to_bits() == c.y.to_bits() && c.y.to_bits() == c.z.to_bits()
 }
 
-/// The base below which a plan's repeated squaring would give a lobe below `2⁻¹⁰⁰`: such bases
-/// are set to 0 first, so no subnormal is ever produced (0 when the plan does not square).
+/// The base below which a plan's repeated squaring reads it as 0, so that no subnormal is ever
+/// produced: the scalar path's [`squaring_floor`](crate::pow::squaring_floor) for the plan's
+/// whole part (its lobe is then below `2⁻⁶⁰`), so the two flush the same bases; 0 when the plan
+/// does not square.
 pub(crate) fn flush_below(plan: PowPlan) -> f32 {
-    let n = match plan {
-        PowPlan::Squaring { n } | PowPlan::Split { n, .. } => n,
-        _ => 0,
-    };
-    if n > 0 {
-        math::powf(2.0, -100.0 / n as f32)
-    } else {
-        0.0
+    match plan {
+        PowPlan::Squaring { n } | PowPlan::Split { n, .. } if n > 0 => {
+            crate::pow::squaring_floor(n)
+        }
+        _ => 0.0,
     }
 }
 
@@ -1759,9 +1758,9 @@ pub(super) mod tests {
     use crate::batch::simd::portable::Portable;
     use crate::pow::error_bounds::worst_over_domain;
 
-    /// The kernel's `pow` at level `s` meets every strategy's bound: the kernels' pow differs
-    /// from the scalar one in flushing bases whose power would fall below 2⁻¹⁰⁰ (an absolute
-    /// error under 2⁻¹⁰⁰, far below the bound's 2⁻²⁴ floor), and where the level fuses
+    /// The kernel's `pow` at level `s` meets every strategy's bound: the kernels' pow flushes
+    /// the bases whose power would fall below 2⁻⁶⁰ as the scalar one does (an absolute error
+    /// under 2⁻⁶⁰, far below the bound's 2⁻²⁴ floor), and differs from it where the level fuses
     /// multiply-adds, in the polynomials' rounding.
     fn lobe_power_meets_each_strategys_bound<S: Simd>(s: S, level: &str) {
         for p in PowStrategy::ALL.iter().copied().chain([PowStrategy::Auto]) {

@@ -187,6 +187,16 @@ fn row(
 /// crate's decision must be the exact one.
 pub const SPOT_EDGE_BAND: f64 = 1.0 / 4_194_304.0;
 
+/// `2⁻⁶⁰`: repeated squaring reads a base whose power is below this as 0 (no subnormal products:
+/// see `PowStrategy`'s docs), so its lobes are judged relatively only from here up, and by the
+/// absolute column below.
+pub const SQUARING_FLUSH: f64 = 8.673_617_379_884_035e-19;
+
+/// `2⁻⁴⁸`: [`SQUARING_FLUSH`] times 4096, above the largest normalisation factor the lobe rows
+/// apply (Phong's `(s + 2)/2π < 1600` at `s = 10⁴`): the models' specular rows are judged
+/// relatively from here up, and by the absolute column below.
+pub const LOBE_FLUSH: f64 = 3.552_713_678_800_501e-15;
+
 // ---------------------------------------------------------------------------------------------
 // Inputs
 
@@ -1124,7 +1134,7 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
                     Model::BlinnPhong(b) => r::blinn_specular(b, dn, dl, dv, sd),
                     Model::Lambert(_) => unreachable!("lobe_models has no Lambert"),
                 };
-                st[2 + k].scalar(m.specular(&g, s), want, 1e-30, input);
+                st[2 + k].scalar(m.specular(&g, s), want, LOBE_FLUSH, input);
             }
             let lam = Lambert::default();
             st[8].scalar(
@@ -1173,7 +1183,12 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
             "vector form: lobe(N·halfway(L,V), s)",
         ];
         for (i, s) in st.into_iter().enumerate() {
-            out.push(row(names[i], kind, domain, false, 1e-30, s));
+            let floor = if (2..8).contains(&i) {
+                LOBE_FLUSH
+            } else {
+                1e-30
+            };
+            out.push(row(names[i], kind, domain, false, floor, s));
         }
     }
 
@@ -1234,7 +1249,7 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
             st[4].scalar(
                 PowStrategy::Squaring.lobe(x, si),
                 r::lobe_pow(x as f64, si as f64),
-                1e-30,
+                SQUARING_FLUSH,
                 input,
             );
             let nl = rng.range(-1.0, 1.0) as f32;
@@ -1255,7 +1270,8 @@ fn lobes(n: usize, out: &mut Vec<Row>) {
             "ResolvedModel::diffuse, Energy (1/π)",
         ];
         for (i, s) in st.into_iter().enumerate() {
-            out.push(row(names[i], ADV, d, true, 1e-30, s));
+            let floor = if i == 4 { SQUARING_FLUSH } else { 1e-30 };
+            out.push(row(names[i], ADV, d, true, floor, s));
         }
     }
 }

@@ -103,7 +103,8 @@ fn accuracy_md() -> String {
          these measurements on a smaller sample and asserts a bound for each row.\n\n\
          **Columns.** *max abs*: the largest absolute error (largest component for vectors). \
          *max rel*: the largest `|got − want| / |want|` (for vectors `‖got − want‖ / ‖want‖`), \
-         counted only where the reference is at least the row's floor (1e-30 for most scalars, \
+         counted only where the reference is at least the row's floor (1e-30 for most scalars, 2⁻⁶⁰ for repeated squaring, which reads smaller powers as 0, and \
+         2⁻⁴⁸ for the models' specular terms, \
          the smallest normal `f32` for `length`, 0.5 for unit vectors), so outputs that \
          underflow are judged by the absolute column alone. *max ulp*: \
          the absolute error in units of the `f32` spacing at the reference value (for vectors: at \
