@@ -464,25 +464,7 @@ fn squarings(x: f32, k: u32) -> f32 {
             y *= y;
         }
     }
-    if k & 8 != 0 {
-        for _ in 0..8 {
-            y *= y;
-        }
-    }
-    if k & 4 != 0 {
-        y *= y;
-        y *= y;
-        y *= y;
-        y *= y;
-    }
-    if k & 2 != 0 {
-        y *= y;
-        y *= y;
-    }
-    if k & 1 != 0 {
-        y *= y;
-    }
-    y
+    squarings_below_16(y, k & 15)
 }
 
 /// [`squarings`] for `k < 16`.
