@@ -1446,8 +1446,8 @@ fn finish<S: Simd, const FOLDED: bool>(
             (rows[0][c], rows[1][c], rows[2][c]) = (s.min(ta, max), s.min(td, max), s.min(ts, max));
         } else {
             // The emission joins the ambient product in one fused multiply-add: for `Ke = 0`
-            // (most materials) that is the product's own bits, and otherwise the sum in another
-            // order than `Terms::total`'s, one rounding fewer. The terms are `≥ 0` (or +∞), so
+            // (most materials) that is the product's own bits, and otherwise `Terms::total`'s order
+            // (ambient and emission first) with one rounding fewer. The terms are `≥ 0` (or +∞), so
             // their sum reaches `f32::MAX` or +∞ exactly when it does with each term clamped
             // first, as `Terms::total` sums them: one `min` at the end gives the same bits, and
             // a sink that clamps below 1 anyway (`saturate` false: 8-bit pixels) skips it.

@@ -86,7 +86,7 @@ impl<'a> SoaRgb<'a> {
 ///
 /// Each value written is the scalar path's term (saturated at `f32::MAX`, finite, `≥ 0`). The
 /// material's emission is the same at every point and is not written: a point's
-/// [`total`](crate::Terms::total) is `min(ambient + diffuse + specular + emission, f32::MAX)`.
+/// [`total`](crate::Terms::total) is `min(ambient + emission + diffuse + specular, f32::MAX)`.
 /// Elements past the shaded prefix are left untouched.
 #[derive(Debug)]
 pub struct SoaTerms<'a> {

@@ -46,12 +46,21 @@ impl Terms {
     /// The sum of the four terms, saturated at `f32::MAX` per channel.
     ///
     /// ```text
-    /// total = ambient + diffuse + specular + emission
+    /// total = min(((ambient + emission) + diffuse) + specular, f32::MAX)
     /// ```
+    ///
+    /// Summed in that order: the specular term is the last that shading computes (it waits for
+    /// the lobe's power), so it joins last, one addition from the end. In a loop over points
+    /// that the compiler vectorises, this took `phong_4096`'s `scalar` (Phong, s = 32) from 23.5
+    /// to 23.2–23.3 TSC ticks a point in a probe on the development machine (the old order,
+    /// emission last, put two additions after the specular term). Every term is `≥ 0`, so the
+    /// total saturates exactly when the exact sum passes `f32::MAX`, in either order; with no
+    /// emission (most materials) the bits are the same as in any order that adds the emission
+    /// last, since adding 0 is exact.
     #[must_use]
     #[inline]
     pub fn total(&self) -> Vec3 {
-        (self.ambient + self.diffuse + self.specular + self.emission).min(Vec3::splat(math::MAX))
+        (self.ambient + self.emission + self.diffuse + self.specular).min(Vec3::splat(math::MAX))
     }
 
     fn map2(self, other: Terms, f: impl Fn(Vec3, Vec3) -> Vec3) -> Terms {
