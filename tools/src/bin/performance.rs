@@ -836,7 +836,11 @@ fn main() {
          (6.4 cycles a point for N, V and L together, before 2026-11-29 shortened its chain); the \
          squaring ladder of fixed length, whose tests on the exponent are branches (five plain \
          squarings were 2.2 cycles faster before the ladder's first product left the chain, \
-         which took 0.6); the evaluation of an overflowing attenuation denominator on operands \
+         which took 0.6; on 2026-12-07, five plain squarings with neither the ladder's tests nor \
+         `Auto`'s never-taken branch to the polynomial were 2.1 cycles a point faster, 1.03× \
+         `naive_glam` in the probe, and either one removed alone gained nothing: the lobe's region \
+         is fast only without a branch, and both are choices on the material's exponent, a \
+         run-time value); the evaluation of an overflowing attenuation denominator on operands \
          scaled into range, which a vectorised loop computes beside the common one for every \
          point (about 1.2); the masks for missing directions, the visibility clamp, the gate and \
          the saturating subtraction. Already taken out of the common path, as branches on what \
