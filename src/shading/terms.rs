@@ -50,13 +50,11 @@ impl Terms {
     /// ```
     ///
     /// Summed in that order: the specular term is the last that shading computes (it waits for
-    /// the lobe's power), so it joins last, one addition from the end. In a loop over points
-    /// that the compiler vectorises, this took `phong_4096`'s `scalar` (Phong, s = 32) from 23.5
-    /// to 23.2–23.3 TSC ticks a point in a probe on the development machine (the old order,
-    /// emission last, put two additions after the specular term). Every term is `≥ 0`, so the
-    /// total saturates exactly when the exact sum passes `f32::MAX`, in either order; with no
-    /// emission (most materials) the bits are the same as in any order that adds the emission
-    /// last, since adding 0 is exact.
+    /// the lobe's power), so it joins last, one addition from the end, which shortens the chain
+    /// a vectorised loop over points waits on (DESIGN.md has the measurement). Every term is
+    /// `≥ 0`, so the total saturates exactly when the exact sum passes `f32::MAX`, in any order;
+    /// with no emission (most materials) it is `(ambient + diffuse) + specular` exactly, since
+    /// adding 0 is exact.
     #[must_use]
     #[inline]
     pub fn total(&self) -> Vec3 {
