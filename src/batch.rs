@@ -316,8 +316,8 @@ pub fn shade_batch_with_level<M: BatchModel, L: BatchLight>(
 ///
 /// The same kernel as [`shade_batch`] encodes each colour in its vector lanes before writing it,
 /// with [`linear_to_srgb8`](crate::linear_to_srgb8)'s levels. At AVX-512 and AVX2 the lanes
-/// compute `255·srgb(x)` to within `1e-3` levels and round it. Where a lane lies within `1e-3`
-/// of a rounding boundary, its channel takes that function's own table instead (as SSE2, NEON
+/// compute `255·srgb(x)` to within `9e-4` levels, in fixed point, and round it. Where a lane lies
+/// within `9.8e-4` of a rounding boundary, its channel takes that function's own table instead (as SSE2, NEON
 /// and portable always do): per channel, one 32-bit entry for the value's bucket of `f32`s (its
 /// exponent and top seven mantissa bits) holds the bucket's first level and where the one level
 /// boundary it may hold lies, then one comparison. So every pixel is exactly

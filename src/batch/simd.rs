@@ -101,9 +101,6 @@ pub(crate) trait Simd: Copy {
     fn sar23(self, a: Self::I) -> Self::I;
     /// Each lane converted to `f32` (exact below `2²⁴`).
     fn to_f32(self, a: Self::I) -> Self::V;
-    /// Each lane rounded to the nearest integer, ties to even, for `|v| < 2²²` (the levels
-    /// without a rounding instruction add and subtract `1.5·2²³`).
-    fn round(self, v: Self::V) -> Self::V;
     /// Each lane converted to `i32`, truncated (exact for a whole number below `2³¹`).
     fn to_i(self, v: Self::V) -> Self::I;
     /// `a >> 16`, logical.
@@ -114,6 +111,10 @@ pub(crate) trait Simd: Copy {
     fn shl16(self, a: Self::I) -> Self::I;
     /// `a & b`.
     fn and_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `a | b`.
+    fn or_i(self, a: Self::I, b: Self::I) -> Self::I;
+    /// The lanes where `a & b` is 0 (AVX-512's `vptestnmd`).
+    fn none_of(self, a: Self::I, b: Self::I) -> Self::M;
     /// `a > b` (signed) per lane as an integer mask: −1 where it holds, 0 elsewhere.
     fn gt_i(self, a: Self::I, b: Self::I) -> Self::I;
 
@@ -434,10 +435,6 @@ macro_rules! simd_by_parts {
                 [$($native::to_f32(a[$j])),+]
             }
             #[inline(always)]
-            fn round(self, v: Self::V) -> Self::V {
-                [$($native::round(v[$j])),+]
-            }
-            #[inline(always)]
             fn to_i(self, v: Self::V) -> Self::I {
                 [$($native::to_i(v[$j])),+]
             }
@@ -456,6 +453,14 @@ macro_rules! simd_by_parts {
             #[inline(always)]
             fn and_i(self, a: Self::I, b: Self::I) -> Self::I {
                 [$($native::and_i(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn or_i(self, a: Self::I, b: Self::I) -> Self::I {
+                [$($native::or_i(a[$j], b[$j])),+]
+            }
+            #[inline(always)]
+            fn none_of(self, a: Self::I, b: Self::I) -> Self::M {
+                [$($native::none_of(a[$j], b[$j])),+]
             }
             #[inline(always)]
             fn gt_i(self, a: Self::I, b: Self::I) -> Self::I {

@@ -18,28 +18,43 @@
 //!   `255·(1.055·x^(1/2.4) − 0.055)` is `255·1.055·2^(5e/12) · m^(5/12) − 255·0.055`: the first
 //!   factor from a table of the 14 binades in `[2⁻¹³, 1]`, indexed by the biased exponent
 //!   modulo 16, the second a polynomial of degree 5 in `m` (Chebyshev interpolation, relative
-//!   error 1.9·10⁻⁶, by Horner's rule). That `w` is within [`ERROR`] of `255·srgb(x)` (checked
-//!   at every `f32` of the range). Rounded to the nearest integer, it is the level unless `w`
-//!   lies within [`MARGIN`] of a half-integer, the rounding boundary; then the exact level may
-//!   be either neighbour, and the channel's lanes take the table (its gather instruction, one
-//!   per half at AVX2). Every other lane's level is exact, because the true `255·srgb(x)` lies
-//!   on the same side of the boundary.
+//!   error 1.9·10⁻⁶, by Horner's rule). Call that `w`; it is within [`ERROR`] of `255·srgb(x)`
+//!   (checked at every `f32` of the range).
+//!
+//!   `w` is formed in fixed point, `u = 2¹⁶·w + 2¹⁵ + GUARD`: every constant of the last fused
+//!   operation (the binade's factor, the linear segment's slope) is scaled by `2¹⁶` exactly,
+//!   and that operation adds the rounding's half and a guard of [`GUARD`] units. Truncated to
+//!   the integer `b`, bits 16–23 of `b` are the level, unless `b`'s low 16 bits are below
+//!   `2·GUARD` (one `vptestnmd`): then `w` lies within [`MARGIN`] of a half-integer, the rounding
+//!   boundary, the exact level may be either neighbour, and the channel's lanes take the table
+//!   (its gather instruction, one per half at AVX2). Every other lane's level is exact, because
+//!   the true `255·srgb(x)` lies on the same side of the boundary. [`pack`] takes the levels
+//!   from bits 16–23 as it places them (two `vpternlogd` and two shifts at AVX-512).
 //!
 //!   About one channel's vector in thirty has such a lane (`2·MARGIN` per lane); one branch
-//!   tests the three channels of a chunk. Per channel the arithmetic is 18 operations at
-//!   AVX-512: the clamp (2), `m` and the exponent (2), the polynomial (5), the binade's factor
-//!   and the linear segment (4), the rounding and the test (5). On the development machine
-//!   (Zen 4) this form took the G-buffer's RGBA8 row from 229 to 261 M points/s at AVX-512, and
-//!   at AVX2, where the gather had been 5–8% faster than an earlier arithmetic form, from 178
-//!   to 186 (DESIGN.md, "What did not work out"). The gather now runs for the few declined
-//!   channels only, which also spares the CPUs whose microcode slows it (Intel's mitigation of
-//!   Downfall).
+//!   tests the three channels of a chunk. Per channel the arithmetic is 14 operations at
+//!   AVX-512: the clamp (1 for the shaded totals, which are never negative), `m` and the
+//!   exponent (2), the polynomial (5), the binade's factor, the linear segment and the select
+//!   between them (4), the truncation and the test (2); the destructive fused operations add
+//!   copies of their constants (register moves). Rounded in floating point instead
+//!   (`vrndscaleps`, a subtraction, the absolute value and a compare beside the conversion),
+//!   the rounding and its test took 5 operations a channel where these take 2; the packing
+//!   takes 5 either way: `gbuffer_rgba8` about 3% faster at AVX-512 on the
+//!   development machine (Zen 4; interleaved criterion runs, 2026-12-07). The first arithmetic
+//!   form took that row from 229 to 261 M points/s at AVX-512, and at AVX2, where the gather had
+//!   been 5–8% faster than an earlier arithmetic form, from 178 to 186 (DESIGN.md, "What did not
+//!   work out"). The gather runs for the few declined channels only, which also spares the CPUs
+//!   whose microcode slows it (Intel's mitigation of Downfall).
 
 use super::simd::Simd;
 use crate::colour::srgb8::{BUCKET, LOWEST, SHIFT};
 
-/// Each channel's 8-bit sRGB levels, `⌊255·srgb(x) + ½⌋` with the exact `srgb`, as integers in
-/// `[0, 255]`: NaN and negatives give 0, values from 1 up give 255.
+/// Each channel's 8-bit sRGB level, `⌊255·srgb(x) + ½⌋` with the exact `srgb`, in `[0, 255]`: NaN
+/// and negatives give 0, values from 1 up give 255.
+///
+/// Each level sits in its lane's word as [`AT16`] says: where the level keeps a table of sixteen
+/// in a register, in bits 16–23 (bits 24–31 clear, bits 0–15 unspecified), and elsewhere in bits
+/// 0–7 (the rest clear). [`pack`] reads either (and the tests' `level_of`).
 ///
 /// Where the level keeps a table of sixteen in a register, the three channels take the
 /// arithmetic, with one branch for all three on whether a lane of any channel lies too near a
@@ -67,21 +82,22 @@ pub(crate) fn levels3<S: Simd, const NONNEG: bool>(s: S, [r, g, b]: [S::V; 3]) -
             return [lr, lg, lb];
         }
         // Written out, not a closure: a closure would not inherit the level's target features.
+        // The table's levels moved to bits 16–23, where the arithmetic's are.
         return [
             if near_r == 0 {
                 lr
             } else {
-                table_levels(s, clamped(s, r))
+                s.shl16(table_levels(s, clamped(s, r)))
             },
             if near_g == 0 {
                 lg
             } else {
-                table_levels(s, clamped(s, g))
+                s.shl16(table_levels(s, clamped(s, g)))
             },
             if near_b == 0 {
                 lb
             } else {
-                table_levels(s, clamped(s, b))
+                s.shl16(table_levels(s, clamped(s, b)))
             },
         ];
     }
@@ -89,8 +105,20 @@ pub(crate) fn levels3<S: Simd, const NONNEG: bool>(s: S, [r, g, b]: [S::V; 3]) -
     [table_levels(s, r), table_levels(s, g), table_levels(s, b)]
 }
 
+/// Whether [`levels3`] at level `S` gives each level in bits 16–23 of its word (the arithmetic's
+/// fixed point), not in bits 0–7 (the table's).
+pub(crate) const fn at16<S: Simd>() -> bool {
+    S::LOOKUP16_IN_REGISTERS
+}
+
+/// A word of [`levels3`] as the bare level, in bits 0–7.
+#[cfg(test)]
+fn level_of<S: Simd>(word: u32) -> u32 {
+    if at16::<S>() { word >> 16 } else { word }
+}
+
 /// `x` clamped for [`checked_levels`]: [`clamped`], or where every lane is `≥ 0` or `+∞`
-/// (`NONNEG`), `min(x, 1)` alone: `scaled`'s linear segment covers `[0, LOWEST)` too (its
+/// (`NONNEG`), `min(x, 1)` alone: `fixed`'s linear segment covers `[0, LOWEST)` too (its
 /// binade table is read there, but not selected).
 #[inline(always)]
 fn for_arithmetic<S: Simd, const NONNEG: bool>(s: S, x: S::V) -> S::V {
@@ -108,22 +136,23 @@ fn clamped<S: Simd>(s: S, x: S::V) -> S::V {
     s.min(s.max(x, s.splat(f32::from_bits(LOWEST))), s.splat(1.0))
 }
 
-/// The levels of `x ∈ [LOWEST, 1]` by the arithmetic, and the lanes where `scaled` lies within
-/// [`MARGIN`] of a rounding boundary, whose levels are not to be kept (module docs).
+/// The levels of `x ∈ [LOWEST, 1]` by the arithmetic, in bits 16–23 of each word, and the lanes
+/// where `255·srgb(x)` may lie within [`MARGIN`] of a rounding boundary, whose levels are not to
+/// be kept (module docs).
 #[inline(always)]
 fn checked_levels<S: Simd>(s: S, x: S::V) -> (S::I, S::M) {
-    let w = scaled(s, x);
-    // `w ∈ [0, 256)`: the nearest integer is exact, and `w` minus it too (Sterbenz). Ties go to
-    // even, but a tie is within the margin, so never kept.
-    let nearest = s.round(w);
-    let off = s.bits_to_f32(s.and_i(s.to_bits(s.sub(w, nearest)), s.splat_i(0x7fff_ffff)));
-    (s.to_i(nearest), s.gt(off, s.splat(0.5 - MARGIN)))
+    // `fixed` is in `(0, 2²⁴)`: truncation is its floor. With `v = 2¹⁶·255·srgb(x) + 2¹⁵`, whose
+    // floor over `2¹⁶` is the level, `fixed` is `v + GUARD` within `2¹⁶·ERROR < GUARD`; so where
+    // `b`'s low 16 bits are at least `2·GUARD`, `v` lies in the same block of `2¹⁶` as `b`.
+    let b = s.to_i(fixed(s, x));
+    (b, s.none_of(b, s.splat_i(NEAR)))
 }
 
-/// `255·srgb(x)` for `x ∈ [LOWEST, 1]`, within [`ERROR`]: the linear segment `255·12.92·x` up
-/// to 0.0031308, then the power segment by binade (module docs).
+/// `2¹⁶·255·srgb(x) + 2¹⁵ + GUARD` for `x ∈ [LOWEST, 1]`, within `2¹⁶·`[`ERROR`]: the linear
+/// segment `255·12.92·x` up to 0.0031308, then the power segment by binade (module docs), each
+/// in fixed point by one fused operation at the end.
 #[inline(always)]
-fn scaled<S: Simd>(s: S, x: S::V) -> S::V {
+fn fixed<S: Simd>(s: S, x: S::V) -> S::V {
     let bits = s.to_bits(x);
     // The biased exponent: 114 at LOWEST = 2⁻¹³, 127 at 1; `lookup16` reads it modulo 16.
     let exponent = s.sar23(bits);
@@ -138,8 +167,12 @@ fn scaled<S: Simd>(s: S, x: S::V) -> S::V {
     for &c in ROOT[..5].iter().rev() {
         root = s.mul_add(root, m, s.splat(c));
     }
-    let curve = s.mul_sub(s.lookup16(&SCALE, exponent), root, s.splat(255.0 * 0.055));
-    let line = s.mul(x, s.splat(255.0 * 12.92));
+    let curve = s.mul_sub(
+        s.lookup16(&SCALE_FIXED, exponent),
+        root,
+        s.splat(CURVE_OFFSET),
+    );
+    let line = s.mul_add(x, s.splat(LINE_FIXED), s.splat(OFFSET));
     s.select(s.le(x, s.splat(0.003_130_8)), line, curve)
 }
 
@@ -161,15 +194,47 @@ const SCALE: [f32; 16] = [
     47.557_35, 63.481_445, 84.737_564, 113.111_08, 150.985_18, 201.541_03, 269.025,
 ];
 
-/// A bound on `|scaled(x) − 255·srgb(x)|`, in levels, at every level's arithmetic (the largest
-/// measured over every `f32` in `[LOWEST, 1]` is 4.9·10⁻⁴ at every level; `exhaustive_error`
-/// measures it).
-pub(crate) const ERROR: f32 = 1e-3;
+/// The fixed point's unit: `2¹⁶` to a level.
+const ONE: f32 = 65536.0;
 
-/// How close to a half-integer `scaled` may land and still be rounded: [`ERROR`]. A kept lane's
-/// `scaled` lies more than `ERROR` from the boundary, so the exact value, within `ERROR` of it,
-/// lies on the same side (no exact value lies on a boundary: `THRESHOLDS` in `srgb8.rs`).
-pub(crate) const MARGIN: f32 = ERROR;
+/// [`SCALE`] in fixed point (each entry times `2¹⁶`, exactly).
+const SCALE_FIXED: [f32; 16] = {
+    let mut t = SCALE;
+    let mut i = 0;
+    while i < t.len() {
+        t[i] *= ONE;
+        i += 1;
+    }
+    t
+};
+
+/// The guard added to the fixed point, in its units (`2⁻¹⁶` of a level): [`MARGIN`] in levels.
+const GUARD: i32 = 64;
+
+/// The rounding's half and the guard, added to `2¹⁶·w`.
+const OFFSET: f32 = ONE / 2.0 + GUARD as f32;
+
+/// `2¹⁶·255·0.055 − OFFSET`, subtracted from the power segment (exact in `f32`).
+const CURVE_OFFSET: f32 = (255.0 * 0.055) * ONE - OFFSET;
+
+/// `2¹⁶·255·12.92`, the linear segment's slope in fixed point.
+const LINE_FIXED: f32 = (255.0 * 12.92) * ONE;
+
+/// The bits of a truncated fixed-point word that are all 0 exactly where its low 16 bits are below
+/// `2·GUARD`: bits 7–15.
+const NEAR: i32 = 0xffff & !(2 * GUARD - 1);
+
+/// A bound on `|w − 255·srgb(x)|`, in levels, with `w = (fixed(x) − 2¹⁵ − GUARD)/2¹⁶`, at every
+/// level's arithmetic (`exhaustive_error` measures it over every `f32` in `[LOWEST, 1]`).
+pub(crate) const ERROR: f32 = 9e-4;
+
+/// How close to a half-integer `255·srgb(x)` may lie and still be kept: `GUARD/2¹⁶` levels
+/// (9.8·10⁻⁴), more than [`ERROR`]. A kept lane's `fixed` lies at least `GUARD` from the
+/// boundary, so the exact value, within `2¹⁶·ERROR` of it, lies on the same side (no exact value
+/// lies on a boundary: `THRESHOLDS` in `srgb8.rs`).
+pub(crate) const MARGIN: f32 = GUARD as f32 / ONE;
+
+const _: () = assert!(ERROR < MARGIN && NEAR == 0xff80);
 
 /// The bucket table's level per lane (module docs).
 #[inline(always)]
@@ -185,13 +250,20 @@ fn table_levels<S: Simd>(s: S, x: S::V) -> S::I {
     )
 }
 
-/// The 32-bit words `lo | mid << 8 | hi << 16 | top` from three lanes of levels in `[0, 255]`.
+/// The 32-bit words `lo | mid << 8 | hi << 16 | top` from three lanes of [`levels3`]'s words
+/// (each level where [`at16`] puts it); `top`'s low 24 bits are 0.
 #[inline(always)]
 pub(crate) fn pack<S: Simd>(s: S, lo: S::I, mid: S::I, hi: S::I, top: u32) -> S::I {
-    s.add_i(
-        s.add_i(lo, s.shl8(mid)),
-        s.add_i(s.shl16(hi), s.splat_i(top as i32)),
-    )
+    let top = s.splat_i(top as i32);
+    if at16::<S>() {
+        // Bits 16–23 of each word, moved to bits 0–7, 8–15 and kept at 16–23; at AVX-512 the
+        // masks and `or`s become two `vpternlogd`.
+        let lo = s.srl16(lo);
+        let mid = s.shl8(s.srl16(mid));
+        let hi = s.and_i(hi, s.splat_i(0x00ff_0000));
+        return s.or_i(s.or_i(lo, mid), s.or_i(hi, top));
+    }
+    s.add_i(s.add_i(lo, s.shl8(mid)), s.add_i(s.shl16(hi), top))
 }
 
 #[cfg(test)]
@@ -244,7 +316,11 @@ mod tests {
                 let got = s.store(s.bits_to_f32(got));
                 for j in 0..W {
                     let x = from[j];
-                    assert_eq!(got[j].to_bits(), u32::from(want(x)), "{name}: x = {x:e}");
+                    assert_eq!(
+                        level_of::<S>(got[j].to_bits()),
+                        u32::from(want(x)),
+                        "{name}: x = {x:e}"
+                    );
                     assert_eq!(words[j].to_bits().to_le_bytes()[k], want(x), "{name}");
                 }
             }
@@ -254,16 +330,18 @@ mod tests {
         }
     }
 
-    /// The largest `|scaled(x) − 255·srgb(x)|` over `xs` (each in `[LOWEST, 1]`) at level `s`.
+    /// The largest `|w − 255·srgb(x)|` over `xs` (each in `[LOWEST, 1]`) at level `s`, with
+    /// `w = (fixed(x) − OFFSET)/2¹⁶` (exact in `f64`).
     fn scaled_error<S: Simd>(s: S, xs: &[f32]) -> f64 {
         let mut worst = 0.0f64;
         for chunk in xs.chunks(W) {
             let mut lanes: Lanes = [1.0; W];
             lanes[..chunk.len()].copy_from_slice(chunk);
-            let w = s.store(scaled(s, s.load(&lanes)));
+            let w = s.store(fixed(s, s.load(&lanes)));
             for (j, &x) in chunk.iter().enumerate() {
                 let exact = 255.0 * crate::colour::srgb8::srgb64(f64::from(x));
-                worst = worst.max((f64::from(w[j]) - exact).abs());
+                let w = (f64::from(w[j]) - f64::from(OFFSET)) / f64::from(ONE);
+                worst = worst.max((w - exact).abs());
             }
         }
         worst
@@ -283,7 +361,11 @@ mod tests {
             for (j, &x) in chunk.iter().enumerate() {
                 if near & (1 << j) == 0 {
                     let want = crate::colour::srgb8::level(x);
-                    assert_eq!(level[j].to_bits(), u32::from(want), "{name}: x = {x:e}");
+                    assert_eq!(
+                        level[j].to_bits() >> 16,
+                        u32::from(want),
+                        "{name}: x = {x:e}"
+                    );
                 }
             }
         }
@@ -322,7 +404,7 @@ mod tests {
     fn exhaustive_error() {
         let xs: Vec<f32> = (LOWEST..=1.0f32.to_bits()).map(f32::from_bits).collect();
         for (name, worst) in at_every_level!(scaled_error, &xs) {
-            println!("{name}: max |scaled − 255·srgb| = {worst:e}");
+            println!("{name}: max |w − 255·srgb| = {worst:e}");
             assert!(
                 worst <= f64::from(ERROR),
                 "{name}: error {worst:e} > {ERROR:e}"

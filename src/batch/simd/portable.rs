@@ -175,12 +175,6 @@ impl Simd for Portable {
     fn to_f32(self, a: [i32; W]) -> Lanes {
         each!(|i| a[i] as f32)
     }
-    /// `(v + 1.5·2²³) − 1.5·2²³`, exact for `|v| < 2²²` (`core` has no `round_ties_even`
-    /// without `std`).
-    #[inline(always)]
-    fn round(self, v: Lanes) -> Lanes {
-        each!(|i| (v[i] + 12_582_912.0) - 12_582_912.0)
-    }
     #[inline(always)]
     fn to_i(self, v: Lanes) -> [i32; W] {
         each!(|i| v[i] as i32)
@@ -200,6 +194,14 @@ impl Simd for Portable {
     #[inline(always)]
     fn and_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
         each!(|i| a[i] & b[i])
+    }
+    #[inline(always)]
+    fn or_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {
+        each!(|i| a[i] | b[i])
+    }
+    #[inline(always)]
+    fn none_of(self, a: [i32; W], b: [i32; W]) -> [u32; W] {
+        each!(|i| mask(a[i] & b[i] == 0))
     }
     #[inline(always)]
     fn gt_i(self, a: [i32; W], b: [i32; W]) -> [i32; W] {

@@ -10,9 +10,10 @@
 
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_andnot_ps,
-    _mm_cmpgt_epi32, _mm_cmple_ps, _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_cvttps_epi32, _mm_div_ps,
-    _mm_max_ps, _mm_min_ps, _mm_movemask_ps, _mm_mul_ps, _mm_or_ps, _mm_rsqrt_ps, _mm_set1_epi32,
-    _mm_set1_ps, _mm_slli_epi32, _mm_sqrt_ps, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32,
+    _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmpgt_epi32, _mm_cmple_ps, _mm_cmplt_ps,
+    _mm_cvtepi32_ps, _mm_cvttps_epi32, _mm_div_ps, _mm_max_ps, _mm_min_ps, _mm_movemask_ps,
+    _mm_mul_ps, _mm_or_ps, _mm_or_si128, _mm_rsqrt_ps, _mm_set1_epi32, _mm_set1_ps,
+    _mm_setzero_si128, _mm_slli_epi32, _mm_sqrt_ps, _mm_srai_epi32, _mm_srli_epi32, _mm_sub_epi32,
     _mm_sub_ps,
 };
 
@@ -135,14 +136,6 @@ mod native {
     pub(super) fn to_f32(a: __m128i) -> __m128 {
         unsafe { _mm_cvtepi32_ps(a) }
     }
-    /// SSE2 has no rounding instruction: `(v + 1.5·2²³) − 1.5·2²³`, exact for `|v| < 2²²`.
-    #[inline(always)]
-    pub(super) fn round(v: __m128) -> __m128 {
-        unsafe {
-            let big = _mm_set1_ps(12_582_912.0);
-            _mm_sub_ps(_mm_add_ps(v, big), big)
-        }
-    }
     #[inline(always)]
     pub(super) fn to_i(v: __m128) -> __m128i {
         unsafe { _mm_cvttps_epi32(v) }
@@ -162,6 +155,14 @@ mod native {
     #[inline(always)]
     pub(super) fn and_i(a: __m128i, b: __m128i) -> __m128i {
         unsafe { _mm_and_si128(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn or_i(a: __m128i, b: __m128i) -> __m128i {
+        unsafe { _mm_or_si128(a, b) }
+    }
+    #[inline(always)]
+    pub(super) fn none_of(a: __m128i, b: __m128i) -> __m128 {
+        unsafe { _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(a, b), _mm_setzero_si128())) }
     }
     #[inline(always)]
     pub(super) fn gt_i(a: __m128i, b: __m128i) -> __m128i {

@@ -942,10 +942,10 @@ fn main() {
          | `shade_batch` (`f32`) | `shade_batch_rgba8` | ratio |\n|---:|---:|---:|\n| {} | {} | {} |\n\n\
          The pixels are `linear_to_srgb8`'s, bit for bit, at every level \
          (src/batch/srgb8_lanes.rs and its tests). At AVX-512 and AVX2 the lanes compute \
-         `255·srgb(x)` to within 1e-3 levels (a table of the binades held in registers, and a \
-         polynomial of degree 5: 18 vector operations a channel) and round it; a channel whose \
-         vector has a lane within 1e-3 of a rounding boundary takes the table instead (about \
-         one in thirty), loaded by `vpgatherdd`. SSE2, NEON and portable load each lane's table \
+         `255·srgb(x)` to within 9e-4 levels (a table of the binades held in registers, and a \
+         polynomial of degree 5, in fixed point: 14 vector operations a channel) and round it \
+         by truncating; a channel whose vector has a lane within 9.8e-4 of a rounding boundary \
+         takes the table instead (about one in thirty), loaded by `vpgatherdd`. SSE2, NEON and portable load each lane's table \
          entry one by one. On this host the 16-lane gathers were nearly the whole cost of 8-bit \
          output; DESIGN.md has the measurements. \
          At every level the kernel writes a chunk's pixels after shading the next chunk, so \
