@@ -287,6 +287,18 @@ pub fn srgb8_to_linear(level: u8) -> f32 {
     LINEAR[usize::from(level)]
 }
 
+/// [`LINEAR`]'s entries as bits, for the batch kernel's gather (`batch::kernel`, the decoded
+/// albedo): a lane that gathers entry `k` holds `srgb8_to_linear(k)`'s bits.
+pub(crate) const LINEAR_BITS: [i32; 256] = {
+    let mut bits = [0i32; 256];
+    let mut k = 0;
+    while k < bits.len() {
+        bits[k] = LINEAR[k].to_bits() as i32;
+        k += 1;
+    }
+    bits
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;

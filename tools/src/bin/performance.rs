@@ -1043,7 +1043,8 @@ fn main() {
          |---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n\
          | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n\n\
          The RGBA8-with-albedo pair reads the texels as a renderer keeps them, 8-bit sRGB \
-         (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a 256-entry table), in place of \
+         (`GBuffer::with_albedo_srgb8`, decoded in the kernel by a gather per channel from a \
+         256-entry table), in place of \
          linear `f32` reflectances. The last pair writes the three terms apart (`SoaTerms`: nine \
          `f32` slices, 36 bytes a point against the total's 12).\n\n\
          The group's light is grey, as LearnOpenGL's are (`Vec3::splat` colours). Where every \
