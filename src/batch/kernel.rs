@@ -658,9 +658,11 @@ pub(super) fn log2<S: Simd, const N: usize, const NORMAL: bool>(
     s.mul_add(t, poly(s, t, c), ef)
 }
 
-/// `2^y` for `y ≤ 0`, 0 where `y < −100` (as `pow::poly_pow`'s): `y = r + f` with `r` the nearest
-/// integer (by the `1.5·2²³` trick), `2^f ≈ 1 + f·R(f)`, and `2^r` built in the exponent bits.
-/// `IN_RANGE` says every `y` is already in `[−100, 0]`.
+/// `2^y` for `y ≤ 0`, 0 where `y < −100` (as `pow::poly_pow`'s, bit for bit): `y = r + f` with `r`
+/// the nearest integer (the level's rounding instruction, or the `1.5·2²³` trick), `2^f ≈ 1 +
+/// f·R(f)`, and the product by `2^r` exact (`Simd::scale2`: at AVX-512 one `vscalefps`, where
+/// building `2^r` in the exponent bits and multiplying took three operations, and the trick's
+/// rounding three more). `IN_RANGE` says every `y` is already in `[−100, 0]`.
 #[inline(always)]
 pub(super) fn exp2<S: Simd, const N: usize, const IN_RANGE: bool>(
     s: S,
@@ -676,17 +678,12 @@ pub(super) fn exp2<S: Simd, const N: usize, const IN_RANGE: bool>(
     } else {
         s.max(y, s.splat(-100.0))
     };
-    let big = s.add(y, s.splat(12_582_912.0));
-    let r = s.sub(big, s.splat(12_582_912.0));
-    let ri = s.sub_i(s.to_bits(big), s.splat_i(0x4b40_0000));
+    let r = s.round(y);
     let f = s.sub(y, r);
     let q = s.mul_add(f, poly(s, f, c), s.splat(1.0));
-    let scale = s.bits_to_f32(s.shl23(s.add_i(ri, s.splat_i(127))));
-    if IN_RANGE {
-        s.mul(q, scale)
-    } else {
-        s.keep(keep, s.mul(q, scale))
-    }
+    // `q ∈ [2^−½, 2^½]` and `r ≥ −100`: a normal product, exact.
+    let p = s.scale2(q, r);
+    if IN_RANGE { p } else { s.keep(keep, p) }
 }
 
 /// `exp2(e·log2 x)` per lane by the polynomial pair `p`, for `x ∈ (0, 1]`.

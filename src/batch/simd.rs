@@ -101,6 +101,14 @@ pub(crate) trait Simd: Copy {
     fn sar23(self, a: Self::I) -> Self::I;
     /// Each lane converted to `f32` (exact below `2²⁴`).
     fn to_f32(self, a: Self::I) -> Self::V;
+    /// Each lane rounded to the nearest integer, ties to even, for `|v| < 2²²` (the levels
+    /// without a rounding instruction add and subtract `1.5·2²³`).
+    fn round(self, v: Self::V) -> Self::V;
+    /// `q·2^r` for whole numbers `r` in `[−126, 127]` where the product is a normal number (so
+    /// exact): AVX-512's `vscalefps`, elsewhere a product by `2^r` built in the exponent bits
+    /// (with wrapping integer arithmetic). Other lanes get an unspecified value, never a panic:
+    /// `exp2`'s lanes for bases `≤ 0`, which its callers clear.
+    fn scale2(self, q: Self::V, r: Self::V) -> Self::V;
     /// Each lane converted to `i32`, truncated (exact for a whole number below `2³¹`).
     fn to_i(self, v: Self::V) -> Self::I;
     /// `a >> 16`, logical.
@@ -433,6 +441,14 @@ macro_rules! simd_by_parts {
             #[inline(always)]
             fn to_f32(self, a: Self::I) -> Self::V {
                 [$($native::to_f32(a[$j])),+]
+            }
+            #[inline(always)]
+            fn round(self, v: Self::V) -> Self::V {
+                [$($native::round(v[$j])),+]
+            }
+            #[inline(always)]
+            fn scale2(self, q: Self::V, r: Self::V) -> Self::V {
+                [$($native::scale2(q[$j], r[$j])),+]
             }
             #[inline(always)]
             fn to_i(self, v: Self::V) -> Self::I {

@@ -7,14 +7,15 @@
 )]
 
 use core::arch::x86_64::{
-    __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _mm512_add_epi32, _mm512_add_ps,
-    _mm512_and_si512, _mm512_cmp_ps_mask, _mm512_cmpgt_epi32_mask, _mm512_cvtepi32_ps,
-    _mm512_cvttps_epi32, _mm512_div_ps, _mm512_fmadd_ps, _mm512_fmsub_ps, _mm512_fnmadd_ps,
-    _mm512_i32gather_epi32, _mm512_loadu_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_epi32,
-    _mm512_maskz_mov_ps, _mm512_max_ps, _mm512_min_epu32, _mm512_min_ps, _mm512_mul_ps,
-    _mm512_or_si512, _mm512_permutexvar_ps, _mm512_rsqrt14_ps, _mm512_set1_epi32, _mm512_set1_ps,
-    _mm512_slli_epi32, _mm512_sqrt_ps, _mm512_srai_epi32, _mm512_srli_epi32, _mm512_sub_epi32,
-    _mm512_sub_ps, _mm512_testn_epi32_mask,
+    __m512, __m512i, __mmask16, _CMP_LE_OQ, _CMP_LT_OQ, _MM_FROUND_NO_EXC,
+    _MM_FROUND_TO_NEAREST_INT, _mm512_add_epi32, _mm512_add_ps, _mm512_and_si512,
+    _mm512_cmp_ps_mask, _mm512_cmpgt_epi32_mask, _mm512_cvtepi32_ps, _mm512_cvttps_epi32,
+    _mm512_div_ps, _mm512_fmadd_ps, _mm512_fmsub_ps, _mm512_fnmadd_ps, _mm512_i32gather_epi32,
+    _mm512_loadu_ps, _mm512_mask_blend_ps, _mm512_maskz_mov_epi32, _mm512_maskz_mov_ps,
+    _mm512_max_ps, _mm512_min_epu32, _mm512_min_ps, _mm512_mul_ps, _mm512_or_si512,
+    _mm512_permutexvar_ps, _mm512_roundscale_ps, _mm512_rsqrt14_ps, _mm512_scalef_ps,
+    _mm512_set1_epi32, _mm512_set1_ps, _mm512_slli_epi32, _mm512_sqrt_ps, _mm512_srai_epi32,
+    _mm512_srli_epi32, _mm512_sub_epi32, _mm512_sub_ps, _mm512_testn_epi32_mask,
 };
 
 use crate::batch::Level;
@@ -148,6 +149,16 @@ mod native {
     #[inline(always)]
     pub(super) fn to_f32(a: __m512i) -> __m512 {
         unsafe { _mm512_cvtepi32_ps(a) }
+    }
+    /// `vrndscaleps` to whole numbers.
+    #[inline(always)]
+    pub(super) fn round(v: __m512) -> __m512 {
+        unsafe { _mm512_roundscale_ps::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(v) }
+    }
+    /// `vscalefps`: `q·2^⌊r⌋`.
+    #[inline(always)]
+    pub(super) fn scale2(q: __m512, r: __m512) -> __m512 {
+        unsafe { _mm512_scalef_ps(q, r) }
     }
     #[inline(always)]
     pub(super) fn to_i(v: __m512) -> __m512i {

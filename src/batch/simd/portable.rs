@@ -175,6 +175,16 @@ impl Simd for Portable {
     fn to_f32(self, a: [i32; W]) -> Lanes {
         each!(|i| a[i] as f32)
     }
+    /// `(v + 1.5·2²³) − 1.5·2²³`, exact for `|v| < 2²²` (`core` has no `round_ties_even`
+    /// without `std`).
+    #[inline(always)]
+    fn round(self, v: Lanes) -> Lanes {
+        each!(|i| (v[i] + 12_582_912.0) - 12_582_912.0)
+    }
+    #[inline(always)]
+    fn scale2(self, q: Lanes, r: Lanes) -> Lanes {
+        each!(|i| q[i] * f32::from_bits(((r[i] as i32).wrapping_add(127) << 23) as u32))
+    }
     #[inline(always)]
     fn to_i(self, v: Lanes) -> [i32; W] {
         each!(|i| v[i] as i32)

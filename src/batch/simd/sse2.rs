@@ -136,6 +136,21 @@ mod native {
     pub(super) fn to_f32(a: __m128i) -> __m128 {
         unsafe { _mm_cvtepi32_ps(a) }
     }
+    /// SSE2 has no rounding instruction: `(v + 1.5·2²³) − 1.5·2²³`, exact for `|v| < 2²²`.
+    #[inline(always)]
+    pub(super) fn round(v: __m128) -> __m128 {
+        unsafe {
+            let big = _mm_set1_ps(12_582_912.0);
+            _mm_sub_ps(_mm_add_ps(v, big), big)
+        }
+    }
+    #[inline(always)]
+    pub(super) fn scale2(q: __m128, r: __m128) -> __m128 {
+        unsafe {
+            let biased = _mm_add_epi32(_mm_cvttps_epi32(r), _mm_set1_epi32(127));
+            _mm_mul_ps(q, _mm_castsi128_ps(_mm_slli_epi32::<23>(biased)))
+        }
+    }
     #[inline(always)]
     pub(super) fn to_i(v: __m128) -> __m128i {
         unsafe { _mm_cvttps_epi32(v) }
