@@ -905,7 +905,7 @@ fn reflectances<S: Simd>(
 /// Decoded lane by lane instead (48 table loads and scalar stores into three arrays, then a
 /// vector load of each, which the stores cannot forward), `gbuffer_albedo8_rgba8` took 1.24× the
 /// time of `gbuffer_rgba8` (the same call without an albedo) at AVX-512 on the development
-/// machine (Zen 4), against 1.11× gathered: 15.2–16.0 µs against 13.6–14.5 in six interleaved
+/// machine (an Intel Xeon, family 6 model 207), against 1.11× gathered: 15.2–16.0 µs against 13.6–14.5 in six interleaved
 /// criterion runs of each, 2026-12-07.
 #[inline(always)]
 fn decoded_albedo<S: Simd>(s: S, albedo: &[[u8; 4]], i: usize, count: usize) -> [S::V; 3] {

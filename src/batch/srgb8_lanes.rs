@@ -39,12 +39,13 @@
 //!   copies of their constants (register moves). Rounded in floating point instead
 //!   (`vrndscaleps`, a subtraction, the absolute value and a compare beside the conversion),
 //!   the rounding and its test took 5 operations a channel where these take 2; the packing
-//!   takes 5 either way: `gbuffer_rgba8` about 3% faster at AVX-512 on the
-//!   development machine (Zen 4; interleaved criterion runs, 2026-12-07). The first arithmetic
-//!   form took that row from 229 to 261 M points/s at AVX-512, and at AVX2, where the gather had
-//!   been 5–8% faster than an earlier arithmetic form, from 178 to 186 (DESIGN.md, "What did not
-//!   work out"). The gather runs for the few declined channels only, which also spares the CPUs
-//!   whose microcode slows it (Intel's mitigation of Downfall).
+//!   takes 5 either way. On the development machine (an Intel Xeon, family 6 model 207;
+//!   interleaved criterion runs, 2026-12-07) `gbuffer_rgba8` ran faster at AVX-512 in six
+//!   pairs of eight, by about 3% in the quieter runs. On the Zen 4 host of earlier sessions,
+//!   the first arithmetic form took that row from 229 to 261 M points/s at AVX-512, and at AVX2,
+//!   where the gather had been 5–8% faster than an earlier arithmetic form, from 178 to 186
+//!   (DESIGN.md, "What did not work out"). The gather runs for the few declined channels only,
+//!   which also spares the CPUs whose microcode slows it (Intel's mitigation of Downfall).
 
 use super::simd::Simd;
 use crate::colour::srgb8::{BUCKET, LOWEST, SHIFT};

@@ -946,7 +946,7 @@ fn main() {
          polynomial of degree 5, in fixed point: 14 vector operations a channel) and round it \
          by truncating; a channel whose vector has a lane within 9.8e-4 of a rounding boundary \
          takes the table instead (about one in thirty), loaded by `vpgatherdd`. SSE2, NEON and portable load each lane's table \
-         entry one by one. On this host the 16-lane gathers were nearly the whole cost of 8-bit \
+         entry one by one. On the Zen 4 host of 2026-11 the 16-lane gathers were nearly the whole cost of 8-bit \
          output; DESIGN.md has the measurements. \
          At every level the kernel writes a chunk's pixels after shading the next chunk, so \
          the encoding's chain of dependent operations runs beside that shading. Per level, \
@@ -1063,7 +1063,7 @@ fn main() {
          adds that light's ambient part alone (the same bits as shading it). With the same \
          proportions in runs of 64 points (`gbuffer_rgba8_shadow_runs`), the RGBA8 call shades \
          {} M points/s ({}× `gbuffer_rgba8`). The test per light and chunk costs the rows \
-         without dark chunks about 1–2% (interleaved runs on this host when it came in, \
+         without dark chunks about 1–2% (interleaved runs on the Zen 4 host when it came in, \
          2026-11-29). The same skip takes a light that lies behind every point of a chunk \
          (N·L ≤ 0 in all 16 lanes, as across a lit sphere's far side), where the model's gate \
          zeroes the lobe behind the surface: with half the runs of 64 points turned away from \
@@ -1148,7 +1148,7 @@ fn main() {
          operations, the spot cone's power by `PowStrategy::Auto`'s plan), against `shade` point \
          by point, which is how the batch shaded a call with such a light before (million points \
          per second). Until 2026-11-29 the kernel took these lights' factors lane by lane in \
-         scalar code, with `powf` for the cone: 39–42 M points/s on this host in interleaved \
+         scalar code, with `powf` for the cone: 39–42 M points/s on the Zen 4 host in interleaved \
          runs, against 225–230 after the change.\n\n\
          | `batch` | `shade` | batch ÷ shade |\n|---:|---:|---:|\n| {} | {} | {} |\n",
         fmt_opt(falloff_batch, 0),
@@ -1168,7 +1168,7 @@ fn main() {
          whose factor reaches 1e-3 somewhere in it (`shade_gbuffer_tiled`; the difference is \
          bounded in `TileCulling`'s docs and tested in tests/gbuffer.rs). Million points per second. \
          Until 2026-11-29 lights past the eighth were prepared for every chunk of 16 points and the \
-         tiled call ran the kernel once per row of a tile; interleaved runs on this host before and \
+         tiled call ran the kernel once per row of a tile; interleaved runs on the Zen 4 host before and \
          after those two changes: every light 4.9–6.3 → 10.2–10.9, tiled 13.4–17.1 → 35.1–37.1.\n\n\
          | every light | tiled | tiled ÷ every light |\n|---:|---:|---:|\n| {} | {} | {} |\n",
         fmt_opt(every, 1),
