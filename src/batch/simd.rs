@@ -108,7 +108,11 @@ pub(crate) trait Simd: Copy {
     /// exact): AVX-512's `vscalefps`, elsewhere a product by `2^r` built in the exponent bits
     /// (with wrapping integer arithmetic). Other lanes get an unspecified value, never a panic:
     /// `exp2`'s lanes for bases `≤ 0`, which its callers clear.
-    fn scale2(self, q: Self::V, r: Self::V) -> Self::V;
+    #[inline(always)]
+    fn scale2(self, q: Self::V, r: Self::V) -> Self::V {
+        let biased = self.add_i(self.to_i(r), self.splat_i(127));
+        self.mul(q, self.bits_to_f32(self.shl23(biased)))
+    }
     /// Each lane converted to `i32`, truncated (exact for a whole number below `2³¹`).
     fn to_i(self, v: Self::V) -> Self::I;
     /// `a >> 16`, logical.
@@ -319,7 +323,7 @@ macro_rules! level_entry {
     )
 )]
 macro_rules! simd_by_parts {
-    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident, gather = $gather:ident, lookup16 = $lookup16:ident) => {
+    ($token:ty, [$($j:tt),+], $n:ty, $ni:ty, $nm:ty, $native:ident, gather = $gather:ident, lookup16 = $lookup16:ident, scale2 = $scale2:ident) => {
         impl $crate::batch::simd::Simd for $token {
             type V = [$n; [$($j),+].len()];
             type I = [$ni; [$($j),+].len()];
@@ -447,10 +451,6 @@ macro_rules! simd_by_parts {
                 [$($native::round(v[$j])),+]
             }
             #[inline(always)]
-            fn scale2(self, q: Self::V, r: Self::V) -> Self::V {
-                [$($native::scale2(q[$j], r[$j])),+]
-            }
-            #[inline(always)]
             fn to_i(self, v: Self::V) -> Self::I {
                 [$($native::to_i(v[$j])),+]
             }
@@ -482,8 +482,9 @@ macro_rules! simd_by_parts {
             fn gt_i(self, a: Self::I, b: Self::I) -> Self::I {
                 [$($native::gt_i(a[$j], b[$j])),+]
             }
-            $crate::batch::simd::table_by_parts!($native, gather = $gather, [$($j),+]);
-            $crate::batch::simd::table_by_parts!($native, lookup16 = $lookup16, [$($j),+]);
+            $crate::batch::simd::default_or_native!($native, gather = $gather, [$($j),+]);
+            $crate::batch::simd::default_or_native!($native, lookup16 = $lookup16, [$($j),+]);
+            $crate::batch::simd::default_or_native!($native, scale2 = $scale2, [$($j),+]);
         }
     };
 }
@@ -499,10 +500,11 @@ macro_rules! simd_by_parts {
         reason = "only the vector levels use it; this target has none"
     )
 )]
-/// A table lookup of [`Simd`] ([`gather`](Simd::gather), [`lookup16`](Simd::lookup16)) for a
-/// level built by [`simd_by_parts!`]: the trait's per-lane default (`default`), or the level's
-/// own instruction on each part (`native`).
-macro_rules! table_by_parts {
+/// An operation of [`Simd`] that the trait defines from the others ([`gather`](Simd::gather),
+/// [`lookup16`](Simd::lookup16), [`scale2`](Simd::scale2)) for a level built by
+/// [`simd_by_parts!`]: the trait's default (`default`), or the level's own instruction on each
+/// part (`native`).
+macro_rules! default_or_native {
     ($native:ident, $op:ident = default, [$($j:expr),+]) => {};
     ($native:ident, gather = native, [$($j:expr),+]) => {
         #[inline(always)]
@@ -518,8 +520,14 @@ macro_rules! table_by_parts {
             [$($native::lookup16(table, idx[$j])),+]
         }
     };
+    ($native:ident, scale2 = native, [$($j:expr),+]) => {
+        #[inline(always)]
+        fn scale2(self, q: Self::V, r: Self::V) -> Self::V {
+            [$($native::scale2(q[$j], r[$j])),+]
+        }
+    };
 }
-pub(crate) use table_by_parts;
+pub(crate) use default_or_native;
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx2;

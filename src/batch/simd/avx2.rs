@@ -38,7 +38,8 @@ simd_by_parts!(
     __m256,
     native,
     gather = native,
-    lookup16 = native
+    lookup16 = native,
+    scale2 = default
 );
 
 level_entry!(Avx2, features = "avx2,fma");
@@ -150,13 +151,6 @@ mod native {
     #[inline(always)]
     pub(super) fn round(v: __m256) -> __m256 {
         unsafe { _mm256_round_ps::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(v) }
-    }
-    #[inline(always)]
-    pub(super) fn scale2(q: __m256, r: __m256) -> __m256 {
-        unsafe {
-            let biased = _mm256_add_epi32(_mm256_cvttps_epi32(r), _mm256_set1_epi32(127));
-            _mm256_mul_ps(q, _mm256_castsi256_ps(_mm256_slli_epi32::<23>(biased)))
-        }
     }
     #[inline(always)]
     pub(super) fn to_i(v: __m256) -> __m256i {

@@ -40,7 +40,8 @@ simd_by_parts!(
     __mmask16,
     native,
     gather = native,
-    lookup16 = native
+    lookup16 = native,
+    scale2 = native
 );
 
 level_entry!(Avx512, features = "avx512f,avx512vl,avx2,fma");

@@ -14,8 +14,8 @@ use core::arch::aarch64::{
     float32x4_t, int32x4_t, uint32x4_t, vaddq_f32, vaddq_s32, vaddvq_u32, vandq_s32, vandq_u32,
     vbslq_f32, vceqzq_s32, vcgtq_f32, vcgtq_s32, vcleq_f32, vcltq_f32, vcvtq_f32_s32,
     vcvtq_s32_f32, vdivq_f32, vdupq_n_f32, vdupq_n_s32, vfmaq_f32, vmulq_f32, vorrq_s32,
-    vreinterpretq_f32_s32, vreinterpretq_s32_u32, vreinterpretq_u32_s32, vrndnq_f32, vrsqrteq_f32,
-    vrsqrtsq_f32, vshlq_n_s32, vshrq_n_s32, vshrq_n_u32, vsqrtq_f32, vsubq_f32, vsubq_s32,
+    vreinterpretq_s32_u32, vreinterpretq_u32_s32, vrndnq_f32, vrsqrteq_f32, vrsqrtsq_f32,
+    vshlq_n_s32, vshrq_n_s32, vshrq_n_u32, vsqrtq_f32, vsubq_f32, vsubq_s32,
 };
 
 /// The `Neon` level's token (every aarch64 build with NEON runs it).
@@ -30,7 +30,8 @@ simd_by_parts!(
     uint32x4_t,
     native,
     gather = default,
-    lookup16 = default
+    lookup16 = default,
+    scale2 = default
 );
 
 level_entry!(Neon);
@@ -146,13 +147,6 @@ mod native {
     #[inline(always)]
     pub(super) fn round(v: float32x4_t) -> float32x4_t {
         unsafe { vrndnq_f32(v) }
-    }
-    #[inline(always)]
-    pub(super) fn scale2(q: float32x4_t, r: float32x4_t) -> float32x4_t {
-        unsafe {
-            let biased = vaddq_s32(vcvtq_s32_f32(r), vdupq_n_s32(127));
-            vmulq_f32(q, vreinterpretq_f32_s32(vshlq_n_s32::<23>(biased)))
-        }
     }
     #[inline(always)]
     pub(super) fn to_i(v: float32x4_t) -> int32x4_t {

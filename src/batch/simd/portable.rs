@@ -182,10 +182,6 @@ impl Simd for Portable {
         each!(|i| (v[i] + 12_582_912.0) - 12_582_912.0)
     }
     #[inline(always)]
-    fn scale2(self, q: Lanes, r: Lanes) -> Lanes {
-        each!(|i| q[i] * f32::from_bits(((r[i] as i32).wrapping_add(127) << 23) as u32))
-    }
-    #[inline(always)]
     fn to_i(self, v: Lanes) -> [i32; W] {
         each!(|i| v[i] as i32)
     }

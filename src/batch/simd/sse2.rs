@@ -29,7 +29,8 @@ simd_by_parts!(
     __m128,
     native,
     gather = default,
-    lookup16 = default
+    lookup16 = default,
+    scale2 = default
 );
 
 level_entry!(Sse2);
@@ -142,13 +143,6 @@ mod native {
         unsafe {
             let big = _mm_set1_ps(12_582_912.0);
             _mm_sub_ps(_mm_add_ps(v, big), big)
-        }
-    }
-    #[inline(always)]
-    pub(super) fn scale2(q: __m128, r: __m128) -> __m128 {
-        unsafe {
-            let biased = _mm_add_epi32(_mm_cvttps_epi32(r), _mm_set1_epi32(127));
-            _mm_mul_ps(q, _mm_castsi128_ps(_mm_slli_epi32::<23>(biased)))
         }
     }
     #[inline(always)]
