@@ -26,6 +26,11 @@
 //! `falloff_4096` (a spot light and an Unreal-falloff point light: the batch against `shade`) and
 //! `tiled_64_lights` (64 lights over a G-buffer: every light against per-tile culling).
 //!
+//! `paired_4096` holds the targets' ratios again (`scalar` ÷ `naive_glam`, each level ÷ AVX-512
+//! and SSE2 ÷ portable, the G-buffer's 8-bit rows ÷ `batch_frac`), each row one ratio whose two
+//! calls are timed in alternation inside every sample (`support/paired_ratio.rs`), so that the
+//! host's slow spells fall on both sides alike.
+//!
 //! Before timing, each group asserts that `scalar`, `scalar_opaque`, `batch` and `batch_frac` agree with
 //! `naive_glam` (same step gate, ambient and attenuation) on the same inputs.
 //!
@@ -42,6 +47,9 @@ use phong::{
 };
 
 use phong_tools::bench_scene::*;
+
+#[path = "support/paired_ratio.rs"]
+mod paired_ratio;
 
 /// The padding between arrays carved from one buffer: 272 `f32`s, 1088 bytes, so that arrays of
 /// 4096 points start at different offsets within a 4 KiB page.
@@ -324,6 +332,25 @@ fn group<M: phong::ReflectionModel + phong::BatchModel + Default>(
         b.iter(|| batch_run(level, black_box(&model), &m20, &scene, &mut soa))
     });
     g.finish();
+
+    // The same `scalar` ÷ `naive_glam`, timed in alternation within each sample (`paired_4096`).
+    if n <= 100_000 {
+        let mut pc = paired_ratio::criterion();
+        let mut pg = pc.benchmark_group("paired_4096");
+        let (model_name, _) = name.split_once('_').unwrap_or((name, ""));
+        let scalar_loop = per_point_rows::<M>()[0].1;
+        pg.bench_function(format!("{model_name}_scalar_over_naive_glam"), |b| {
+            b.iter_custom(|iters| {
+                paired_ratio::ratio(
+                    iters,
+                    &mut (&mut scalar, &mut naive),
+                    |(out, _)| scalar_loop(black_box(&lights[0]), &m32, black_box(&p), &nn, out),
+                    |(_, out)| naive_glam(kind, 32.0, black_box(&p), black_box(&nn), out),
+                )
+            })
+        });
+        pg.finish();
+    }
 }
 
 fn phong_4096(c: &mut Criterion) {
@@ -365,6 +392,51 @@ fn pow_4096(c: &mut Criterion) {
         }
     }
     g.finish();
+
+    // The levels' ratios of the targets, each pair timed in alternation within each sample
+    // (`paired_4096`): `levels_<subject>_over_<baseline>/<model>/<s>`.
+    let supported: Vec<Level> = Level::supported().collect();
+    let pairs = [
+        (Level::Avx2, Level::Avx512),
+        (Level::Sse2, Level::Avx512),
+        (Level::Sse2, Level::Portable),
+    ];
+    let mut pc = paired_ratio::criterion();
+    let mut pg = pc.benchmark_group("paired_4096");
+    for (subject, baseline) in pairs {
+        if !(supported.contains(&subject) && supported.contains(&baseline)) {
+            continue;
+        }
+        for s in [32.0f32, 20.5] {
+            let m = material(s);
+            let (pm, bm) = (
+                phong_model(PowStrategy::Auto),
+                blinn_model(PowStrategy::Auto),
+            );
+            let id = format!("levels_{}_over_{}", subject.name(), baseline.name());
+            pg.bench_function(BenchmarkId::new(id.clone(), format!("phong/{s}")), |b| {
+                b.iter_custom(|iters| {
+                    paired_ratio::ratio(
+                        iters,
+                        &mut soa,
+                        |soa| batch_run(subject, black_box(&pm), &m, &scene, soa),
+                        |soa| batch_run(baseline, black_box(&pm), &m, &scene, soa),
+                    )
+                })
+            });
+            pg.bench_function(BenchmarkId::new(id, format!("blinn/{s}")), |b| {
+                b.iter_custom(|iters| {
+                    paired_ratio::ratio(
+                        iters,
+                        &mut soa,
+                        |soa| batch_run(subject, black_box(&bm), &m, &scene, soa),
+                        |soa| batch_run(baseline, black_box(&bm), &m, &scene, soa),
+                    )
+                })
+            });
+        }
+    }
+    pg.finish();
 }
 
 /// The batch path forced to each dispatch level this CPU runs (N = 4096, s = 32 and 20.5).
@@ -918,6 +990,35 @@ fn gbuffer_4096(c: &mut Criterion) {
         })
     });
     g.finish();
+
+    // The two 8-bit rows ÷ `batch_frac`, each pair timed in alternation within each sample
+    // (`paired_4096`).
+    let mut pc = paired_ratio::criterion();
+    let mut pg = pc.benchmark_group("paired_4096");
+    for (row, buf) in [
+        ("gbuffer_rgba8", &buffer),
+        ("gbuffer_albedo8_rgba8", &buffer8),
+    ] {
+        pg.bench_function(format!("{row}_over_batch_frac"), |bch| {
+            bch.iter_custom(|iters| {
+                paired_ratio::ratio(
+                    iters,
+                    &mut (&mut *frame, &mut soa),
+                    |(frame, _)| {
+                        phong::shade_gbuffer_rgba8(
+                            black_box(&model),
+                            &m20,
+                            &scene,
+                            black_box(buf),
+                            frame,
+                        );
+                    },
+                    |(_, soa)| batch_run(level, black_box(&model), &m20, &scene, soa),
+                )
+            })
+        });
+    }
+    pg.finish();
 }
 
 /// Spot lights and falloffs other than the polynomial one, which the batch kernel evaluates per

@@ -302,6 +302,77 @@ fn median_ns(dir: &Path, which: &str) -> Option<f64> {
     v["median"]["point_estimate"].as_f64()
 }
 
+/// The median of a `paired_4096` row: a throughput ratio (`benches/support/paired_ratio.rs`).
+fn paired(function: &str) -> Option<f64> {
+    median_ns(&crit_dir().join("paired_4096").join(function), "new")
+}
+
+/// The targets' ratios again, each from one `paired_4096` row, where both sides are timed in
+/// alternation within every sample instead of in windows of their own.
+fn paired_table(md: &mut String) {
+    let mut rows: Vec<(String, String, f64)> = Vec::new();
+    for kind in [Kind::Phong, Kind::Blinn] {
+        rows.push((
+            format!("{}_scalar_over_naive_glam", kind.name()),
+            format!("`scalar` ≥ 1× `naive_glam`, {}", kind.name()),
+            1.0,
+        ));
+    }
+    for (subject, baseline, goal) in [
+        ("avx2", "avx512", 0.6),
+        ("sse2", "avx512", 0.3),
+        ("sse2", "portable", 1.0),
+    ] {
+        for kind in [Kind::Phong, Kind::Blinn] {
+            for sh in [32.0f32, 20.5] {
+                rows.push((
+                    format!("levels_{subject}_over_{baseline}/{}_{sh}", kind.name()),
+                    format!(
+                        "`{subject}` ≥ {goal}× `{baseline}`, {} s = {sh}",
+                        kind.name()
+                    ),
+                    goal,
+                ));
+            }
+        }
+    }
+    for f in ["gbuffer_rgba8", "gbuffer_albedo8_rgba8"] {
+        rows.push((
+            format!("{f}_over_batch_frac"),
+            format!("`{f}` ≥ 0.8× this build's `batch_frac`"),
+            0.8,
+        ));
+    }
+    let measured: Vec<_> = rows
+        .into_iter()
+        .filter_map(|(f, what, goal)| Some((f.clone(), what, goal, paired(&f)?)))
+        .collect();
+    if measured.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "\n### The same ratios, paired (`paired_4096`)\n\n\
+         Each row above compares two criterion rows, each timed in a two-second window of its \
+         own. On this shared host the speed moves between states about 35–40% apart that last \
+         from half a second to several seconds, so the two windows of a ratio can fall in \
+         different states (the noise paragraph above). A `paired_4096` row times both calls of \
+         a ratio in alternation inside every one of criterion's samples (a few milliseconds), \
+         so both sides of a sample see the same state, and its median is the median of those \
+         per-sample ratios: the subject's throughput ÷ the baseline's \
+         (`benches/support/paired_ratio.rs`). The comparison with 259b7f8 cannot be paired: \
+         one process holds one build.\n"
+    );
+    let _ = writeln!(md, "| ratio | paired median | status |\n|---|---:|---|");
+    for (_, what, goal, r) in measured {
+        let _ = writeln!(
+            md,
+            "| {what} | {r:.3}× | {} |",
+            status_at_least(Some(r), goal, "not measured")
+        );
+    }
+}
+
 /// The saved baseline, if any, whose `estimates.json` is byte for byte the one in `new/` of a
 /// criterion benchmark directory `dir`.
 ///
@@ -760,6 +831,7 @@ fn main() {
             spread.join("; ")
         );
     }
+    paired_table(&mut md);
     let _ = writeln!(
         md,
         "\n## Real-shaped groups (`cargo bench --bench renderers`; `raster_frame`: `cargo bench -p raster`)\n"
