@@ -360,8 +360,11 @@ fn paired_table(md: &mut String) {
          a ratio in alternation inside every one of criterion's samples (a few milliseconds), \
          so both sides of a sample see the same state, and its median is the median of those \
          per-sample ratios: the subject's throughput ÷ the baseline's \
-         (`benches/support/paired_ratio.rs`). The comparison with 259b7f8 cannot be paired: \
-         one process holds one build.\n"
+         (`benches/support/paired_ratio.rs`). The slow states do not slow every kind of code \
+         alike, so a paired ratio still moves between runs: by 1–17% a row across four runs on \
+         2026-12-07 (Phong's per-point row by under 1%), where the ordinary rows' ratios moved \
+         by tens of percent. The comparison with 259b7f8 cannot be paired: one process holds \
+         one build.\n"
     );
     let _ = writeln!(md, "| ratio | paired median | status |\n|---|---:|---|");
     for (_, what, goal, r) in measured {
