@@ -392,51 +392,6 @@ fn pow_4096(c: &mut Criterion) {
         }
     }
     g.finish();
-
-    // The levels' ratios of the targets, each pair timed in alternation within each sample
-    // (`paired_4096`): `levels_<subject>_over_<baseline>/<model>/<s>`.
-    let supported: Vec<Level> = Level::supported().collect();
-    let pairs = [
-        (Level::Avx2, Level::Avx512),
-        (Level::Sse2, Level::Avx512),
-        (Level::Sse2, Level::Portable),
-    ];
-    let mut pc = paired_ratio::criterion();
-    let mut pg = pc.benchmark_group("paired_4096");
-    for (subject, baseline) in pairs {
-        if !(supported.contains(&subject) && supported.contains(&baseline)) {
-            continue;
-        }
-        for s in [32.0f32, 20.5] {
-            let m = material(s);
-            let (pm, bm) = (
-                phong_model(PowStrategy::Auto),
-                blinn_model(PowStrategy::Auto),
-            );
-            let id = format!("levels_{}_over_{}", subject.name(), baseline.name());
-            pg.bench_function(BenchmarkId::new(id.clone(), format!("phong/{s}")), |b| {
-                b.iter_custom(|iters| {
-                    paired_ratio::ratio(
-                        iters,
-                        &mut soa,
-                        |soa| batch_run(subject, black_box(&pm), &m, &scene, soa),
-                        |soa| batch_run(baseline, black_box(&pm), &m, &scene, soa),
-                    )
-                })
-            });
-            pg.bench_function(BenchmarkId::new(id, format!("blinn/{s}")), |b| {
-                b.iter_custom(|iters| {
-                    paired_ratio::ratio(
-                        iters,
-                        &mut soa,
-                        |soa| batch_run(subject, black_box(&bm), &m, &scene, soa),
-                        |soa| batch_run(baseline, black_box(&bm), &m, &scene, soa),
-                    )
-                })
-            });
-        }
-    }
-    pg.finish();
 }
 
 /// The batch path forced to each dispatch level this CPU runs (N = 4096, s = 32 and 20.5).
@@ -467,6 +422,62 @@ fn levels_4096(c: &mut Criterion) {
         }
     }
     g.finish();
+
+    // The levels' ratios of the targets, each pair timed in alternation within each sample
+    // (`paired_4096`): `levels_<subject>_over_<baseline>/<model>/<s>`.
+    let supported: Vec<Level> = Level::supported().collect();
+    let pairs = [
+        (Level::Avx2, Level::Avx512),
+        (Level::Sse2, Level::Avx512),
+        (Level::Sse2, Level::Portable),
+    ];
+    let mut pc = paired_ratio::criterion();
+    let mut pg = pc.benchmark_group("paired_4096");
+    for (subject, baseline) in pairs {
+        if !(supported.contains(&subject) && supported.contains(&baseline)) {
+            continue;
+        }
+        for s in [32.0f32, 20.5] {
+            let m = material(s);
+            let (pm, bm) = (
+                phong_model(PowStrategy::Auto),
+                blinn_model(PowStrategy::Auto),
+            );
+            let id = format!("levels_{}_over_{}", subject.name(), baseline.name());
+            let levels = (subject, baseline);
+            let phong_id = BenchmarkId::new(id.clone(), format!("phong/{s}"));
+            paired_levels(&mut pg, phong_id, levels, &pm, &m, &scene, &mut soa);
+            let blinn_id = BenchmarkId::new(id, format!("blinn/{s}"));
+            paired_levels(&mut pg, blinn_id, levels, &bm, &m, &scene, &mut soa);
+        }
+    }
+    pg.finish();
+}
+
+/// One `paired_4096` row: `model` shaded at the `subject` level ÷ at the `baseline` level.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the row's group and name, the two levels, and the call's inputs"
+)]
+fn paired_levels<M: phong::BatchModel>(
+    pg: &mut criterion::BenchmarkGroup<'_, paired_ratio::PairedRatio>,
+    id: BenchmarkId,
+    (subject, baseline): (Level, Level),
+    model: &M,
+    m: &Material,
+    scene: &Scene<'_, PointLight>,
+    soa: &mut Soa,
+) {
+    pg.bench_function(id, |b| {
+        b.iter_custom(|iters| {
+            paired_ratio::ratio(
+                iters,
+                soa,
+                |soa| batch_run(subject, black_box(model), m, scene, soa),
+                |soa| batch_run(baseline, black_box(model), m, scene, soa),
+            )
+        })
+    });
 }
 
 /// The batch module's "Many cores" recipe: 2²⁰ points shaded by one call, and cut into one part
