@@ -89,9 +89,17 @@ impl<const SQUARED: bool> LobePow for Auto<SQUARED> {
         auto_pow(x, self.n, self.frac)
     }
 
+    /// A whole exponent squares the clamped base at every point and selects (the ladder is a few
+    /// products, cheaper than a mispredicted branch on the base's sign, which is random from one
+    /// point to the next); a fractional one skips the polynomial's two chains by a branch
+    /// ([`lobe_by_branch`]). The same bits either way: `auto_pow` is the ladder for `frac = 0`.
     #[inline(always)]
     fn lobe(self, x: f32) -> f32 {
-        lobe_by_branch(x, |b| auto_pow(b, self.n, self.frac))
+        if self.frac == 0.0 {
+            lobe_power_selected(x, Squaring(self.n))
+        } else {
+            lobe_by_branch(x, |b| auto_pow(b, self.n, self.frac))
+        }
     }
 
     /// A point's own exponent: the polynomial on `xs` by a branch on its sign, as
