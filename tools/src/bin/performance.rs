@@ -354,15 +354,16 @@ fn paired_table(md: &mut String) {
         md,
         "\n### The same ratios, paired (`paired_4096`)\n\n\
          Each row above compares two criterion rows, each timed in a two-second window of its \
-         own. On this shared host the speed moves between states about 35–40% apart that last \
-         from half a second to several seconds, so the two windows of a ratio can fall in \
-         different states (the noise paragraph above). A `paired_4096` row times both calls of \
+         own. Where a host's speed changes over time (the Intel Xeon host of 2026-12-07 \
+         switched between states about 35–40% apart, each lasting from half a second to several \
+         seconds), the two windows of a ratio can fall in different states; the noise paragraph \
+         above says how far apart they were in this run. A `paired_4096` row times both calls of \
          a ratio in alternation inside every one of criterion's samples (a few milliseconds), \
          so both sides of a sample see the same state, and its median is the median of those \
          per-sample ratios: the subject's throughput ÷ the baseline's \
-         (`benches/support/paired_ratio.rs`). The slow states do not slow every kind of code \
+         (`benches/support/paired_ratio.rs`). A slow state does not slow every kind of code \
          alike, so a paired ratio still moves between runs: by 1–17% a row across four runs on \
-         2026-12-07 (Phong's per-point row by under 1%), where the ordinary rows' ratios moved \
+         that host (Phong's per-point row by under 1%), where the ordinary rows' ratios moved \
          by tens of percent. The comparison with 259b7f8 cannot be paired: one process holds \
          one build.\n"
     );
